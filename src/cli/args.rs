@@ -1,0 +1,191 @@
+//! Parsing the command line into a [`Command`], without touching the filesystem.
+
+use lexopt::prelude::*;
+use std::ffi::OsString;
+use std::fmt;
+use std::path::PathBuf;
+
+/// What the user asked for.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub(crate) enum Command {
+    /// No command at all: what an editor runs to start the language server.
+    NoCommand,
+    Help,
+    Version,
+    Check(CheckOptions),
+}
+
+/// The options of `check`.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub(crate) struct CheckOptions {
+    pub format: OutputFormat,
+    /// One configuration file for every program, instead of the nearest `sinumerik.toml`.
+    pub config_path: Option<PathBuf>,
+    /// Extensions (lower case, without dot) that replace the configured ones when walking folders.
+    pub extensions: Option<Vec<String>>,
+    pub paths: Vec<PathBuf>,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum OutputFormat {
+    Human,
+    Json,
+}
+
+/// A command line that cannot be run, with the reason.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub(crate) struct UsageError(pub String);
+
+impl fmt::Display for UsageError {
+    fn fmt(&self, formatter: &mut fmt::Formatter<'_>) -> fmt::Result {
+        formatter.write_str(&self.0)
+    }
+}
+
+impl From<lexopt::Error> for UsageError {
+    fn from(error: lexopt::Error) -> UsageError {
+        UsageError(error.to_string())
+    }
+}
+
+/// Parses the arguments; the first one is the program name, as in `std::env::args_os()`.
+pub(crate) fn parse_args(args: impl IntoIterator<Item = OsString>) -> Result<Command, UsageError> {
+    let mut parser = lexopt::Parser::from_iter(args);
+    let Some(first) = parser.next()? else {
+        return Ok(Command::NoCommand);
+    };
+    match first {
+        Short('h') | Long("help") => Ok(Command::Help),
+        Short('V') | Long("version") => Ok(Command::Version),
+        Value(command) if command == "check" => parse_check(&mut parser),
+        Value(command) => Err(UsageError(format!(
+            "unknown command {:?} (the only command is `check`)",
+            command.to_string_lossy()
+        ))),
+        other => Err(other.unexpected().into()),
+    }
+}
+
+fn parse_check(parser: &mut lexopt::Parser) -> Result<Command, UsageError> {
+    let mut options = CheckOptions {
+        format: OutputFormat::Human,
+        config_path: None,
+        extensions: None,
+        paths: Vec::new(),
+    };
+    while let Some(arg) = parser.next()? {
+        match arg {
+            Short('h') | Long("help") => return Ok(Command::Help),
+            Long("format") => {
+                let format = parser.value()?;
+                options.format = match format.to_str() {
+                    Some("human") => OutputFormat::Human,
+                    Some("json") => OutputFormat::Json,
+                    _ => {
+                        return Err(UsageError(format!(
+                            "unknown format {:?} for --format (expected human or json)",
+                            format.to_string_lossy()
+                        )))
+                    }
+                };
+            }
+            Long("config") => options.config_path = Some(PathBuf::from(parser.value()?)),
+            Long("extensions") => {
+                let list = parser.value()?.string()?;
+                options.extensions = Some(parse_extension_list(&list)?);
+            }
+            Value(path) => options.paths.push(PathBuf::from(path)),
+            other => return Err(other.unexpected().into()),
+        }
+    }
+    if options.paths.is_empty() {
+        return Err(UsageError(
+            "`check` needs at least one file or folder to check".to_string(),
+        ));
+    }
+    Ok(Command::Check(options))
+}
+
+/// Reads `mpf,spf` (a leading dot is tolerated, `.mpf`, because that is how people often write
+/// extensions on a command line).
+fn parse_extension_list(list: &str) -> Result<Vec<String>, UsageError> {
+    let mut extensions = Vec::new();
+    for item in list.split(',') {
+        let item = item.trim();
+        let extension = item.strip_prefix('.').unwrap_or(item);
+        if extension.is_empty() || extension.contains(['.', '/', '\\']) {
+            return Err(UsageError(format!(
+                "{item:?} in --extensions is not a file extension (expected a list like mpf,spf)"
+            )));
+        }
+        extensions.push(extension.to_ascii_lowercase());
+    }
+    Ok(extensions)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn parse(args: &[&str]) -> Result<Command, UsageError> {
+        parse_args(
+            std::iter::once("sinumerik-lsp")
+                .chain(args.iter().copied())
+                .map(OsString::from),
+        )
+    }
+
+    fn check_options(args: &[&str]) -> CheckOptions {
+        match parse(args) {
+            Ok(Command::Check(options)) => options,
+            other => panic!("expected check options for {args:?}, got {other:?}"),
+        }
+    }
+
+    #[test]
+    fn top_level_commands() {
+        assert_eq!(parse(&[]), Ok(Command::NoCommand));
+        assert_eq!(parse(&["--help"]), Ok(Command::Help));
+        assert_eq!(parse(&["-h"]), Ok(Command::Help));
+        assert_eq!(parse(&["--version"]), Ok(Command::Version));
+        assert_eq!(parse(&["check", "--help"]), Ok(Command::Help));
+        assert!(parse(&["lint", "a.mpf"]).unwrap_err().0.contains("unknown command"));
+        assert!(parse(&["--frobnicate"]).unwrap_err().0.contains("--frobnicate"));
+    }
+
+    #[test]
+    fn check_options_are_read() {
+        let options = check_options(&["check", "a.mpf", "dir"]);
+        assert_eq!(options.format, OutputFormat::Human);
+        assert_eq!(options.paths, vec![PathBuf::from("a.mpf"), PathBuf::from("dir")]);
+        assert_eq!(options.config_path, None);
+        assert_eq!(options.extensions, None);
+
+        let options = check_options(&[
+            "check",
+            "--format=json",
+            "--config",
+            "m.toml",
+            "--extensions",
+            "MPF, .spf,nc",
+            "--",
+            "-odd-name.mpf",
+        ]);
+        assert_eq!(options.format, OutputFormat::Json);
+        assert_eq!(options.config_path, Some(PathBuf::from("m.toml")));
+        assert_eq!(
+            options.extensions,
+            Some(vec!["mpf".to_string(), "spf".to_string(), "nc".to_string()])
+        );
+        assert_eq!(options.paths, vec![PathBuf::from("-odd-name.mpf")]);
+    }
+
+    #[test]
+    fn check_usage_errors() {
+        assert!(parse(&["check"]).unwrap_err().0.contains("at least one"));
+        assert!(parse(&["check", "--format", "xml", "a"]).unwrap_err().0.contains("xml"));
+        assert!(parse(&["check", "a", "--format"]).unwrap_err().0.contains("--format"));
+        assert!(parse(&["check", "--extensions", "mpf,,spf", "a"]).is_err());
+        assert!(parse(&["check", "--colour", "a"]).unwrap_err().0.contains("--colour"));
+    }
+}

@@ -1,0 +1,160 @@
+//! The command line of `sinumerik-lsp`: argument parsing, the `check` command and its output.
+//!
+//! - `args.rs`: turns the arguments into a command, without touching the filesystem.
+//! - `check.rs`: the `check` command: walking folders, finding each file's `sinumerik.toml`, running
+//!   the checker, exit codes.
+//! - `report.rs`: the human and JSON output formats and the byte-span to character-column conversion.
+//! - `source_file.rs`: reading program files: size limit, UTF-8 with Windows-1252 fallback, BOM.
+//!
+//! ```text
+//! sinumerik-lsp check [--format human|json] [--config FILE] [--extensions mpf,spf] PATH...
+//! sinumerik-lsp --help | --version
+//! ```
+//!
+//! Exit codes of `check`:
+//! - 0: no diagnostic of severity error (warnings and infos do not fail a run);
+//! - 1: at least one diagnostic of severity error;
+//! - 2: a usage error, a path that cannot be read, a configuration file that cannot be used, a folder
+//!   without program files, or a file over 256 MiB. The other files are still checked and reported, so
+//!   2 wins over 1 only to say that the run was incomplete.
+//!
+//! This is the only module (with the language server's) that does IO and knows output formats; the
+//! checker itself works on plain text and returns plain values.
+
+mod args;
+mod check;
+mod report;
+pub mod source_file;
+
+use args::{parse_args, Command};
+use std::ffi::OsString;
+use std::io::{self, Write};
+
+/// No diagnostic of severity error.
+pub const EXIT_OK: u8 = 0;
+/// At least one diagnostic of severity error.
+pub const EXIT_ERRORS_FOUND: u8 = 1;
+/// The run could not do what was asked: usage, IO or configuration problems.
+pub const EXIT_TROUBLE: u8 = 2;
+
+const USAGE: &str = "\
+Usage:
+  sinumerik-lsp check [OPTIONS] PATH...   check SINUMERIK programs (files, or folders searched recursively)
+  sinumerik-lsp --help                    show this help
+  sinumerik-lsp --version                 show the version
+
+Options of check:
+  --format human|json   output format (default: human)
+  --config FILE         use this configuration for every program instead of the nearest sinumerik.toml
+  --extensions LIST     extensions read from folders, comma-separated (default: mpf,spf)
+
+Each program uses the sinumerik.toml found in its folder or the nearest folder above it, else the
+defaults of a metric milling machine.
+
+Exit codes: 0 no errors found, 1 errors found, 2 usage, file or configuration problem.
+";
+
+/// Runs the program with the process's arguments (the first is the program name) on the real stdout
+/// and stderr, and returns the exit code.
+pub fn run(args: impl IntoIterator<Item = OsString>) -> u8 {
+    let stdout = io::stdout();
+    let mut stdout = io::BufWriter::new(stdout.lock());
+    let stderr = io::stderr();
+    let mut stderr = stderr.lock();
+    run_with_output(args, &mut stdout, &mut stderr)
+}
+
+/// [`run`] with the output streams passed in, so that tests can capture them.
+pub fn run_with_output(args: impl IntoIterator<Item = OsString>, stdout: &mut dyn Write, stderr: &mut dyn Write) -> u8 {
+    let command = match parse_args(args) {
+        Ok(command) => command,
+        Err(usage_error) => {
+            let _ = writeln!(stderr, "error: {usage_error}\nRun `sinumerik-lsp --help` for usage.");
+            return EXIT_TROUBLE;
+        }
+    };
+    let result = match command {
+        Command::NoCommand => {
+            // Editors start a language server by running its binary without arguments, so this is
+            // the one place where the server will start. Until it exists, no command is a usage error.
+            let _ = write!(stderr, "sinumerik-lsp: a command is needed.\n\n{USAGE}");
+            return EXIT_TROUBLE;
+        }
+        Command::Help => write!(stdout, "{}\n\n{USAGE}", version_line()).map(|()| EXIT_OK),
+        Command::Version => writeln!(stdout, "{}", version_line()).map(|()| EXIT_OK),
+        Command::Check(options) => check::run_check(&options, stdout, stderr),
+    };
+    match result.and_then(|exit_code| stdout.flush().map(|()| exit_code)) {
+        Ok(exit_code) => exit_code,
+        // A closed pipe (`check ... | head`) means the reader has seen enough; that is not worth a message.
+        Err(io_error) if io_error.kind() == io::ErrorKind::BrokenPipe => EXIT_TROUBLE,
+        Err(io_error) => {
+            let _ = writeln!(stderr, "error: cannot write the output: {io_error}");
+            EXIT_TROUBLE
+        }
+    }
+}
+
+fn version_line() -> String {
+    format!("sinumerik-lsp {}", env!("CARGO_PKG_VERSION"))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn run_captured(args: &[&str]) -> (u8, String, String) {
+        let mut stdout = Vec::new();
+        let mut stderr = Vec::new();
+        let args = std::iter::once("sinumerik-lsp").chain(args.iter().copied()).map(OsString::from);
+        let exit_code = run_with_output(args, &mut stdout, &mut stderr);
+        (
+            exit_code,
+            String::from_utf8(stdout).unwrap(),
+            String::from_utf8(stderr).unwrap(),
+        )
+    }
+
+    #[test]
+    fn no_command_prints_usage_on_stderr() {
+        let (exit_code, stdout, stderr) = run_captured(&[]);
+        assert_eq!(exit_code, EXIT_TROUBLE);
+        assert_eq!(stdout, "");
+        assert!(stderr.contains("Usage:"), "{stderr}");
+    }
+
+    #[test]
+    fn help_and_version_go_to_stdout() {
+        let (exit_code, stdout, _) = run_captured(&["--help"]);
+        assert_eq!(exit_code, EXIT_OK);
+        assert!(stdout.contains("--extensions"), "{stdout}");
+        let (exit_code, stdout, _) = run_captured(&["--version"]);
+        assert_eq!(exit_code, EXIT_OK);
+        assert_eq!(stdout, format!("sinumerik-lsp {}\n", env!("CARGO_PKG_VERSION")));
+    }
+
+    #[test]
+    fn usage_errors_exit_2() {
+        let (exit_code, stdout, stderr) = run_captured(&["check", "--bogus", "x"]);
+        assert_eq!(exit_code, EXIT_TROUBLE);
+        assert_eq!(stdout, "");
+        assert!(stderr.contains("--bogus"), "{stderr}");
+    }
+
+    #[test]
+    fn a_failing_writer_does_not_panic() {
+        struct BrokenPipe;
+        impl Write for BrokenPipe {
+            fn write(&mut self, _: &[u8]) -> io::Result<usize> {
+                Err(io::ErrorKind::BrokenPipe.into())
+            }
+            fn flush(&mut self) -> io::Result<()> {
+                Err(io::ErrorKind::BrokenPipe.into())
+            }
+        }
+        let mut stderr = Vec::new();
+        let args = ["sinumerik-lsp", "--version"].map(OsString::from);
+        assert_eq!(run_with_output(args, &mut BrokenPipe, &mut stderr), EXIT_TROUBLE);
+        assert!(stderr.is_empty());
+    }
+}

@@ -1,0 +1,161 @@
+//! The machine configuration: what the control's machine data would tell about axes, units, reset state
+//! and tolerances. Plain data with defaults; reading `sinumerik.toml` lives in `file.rs`.
+
+mod file;
+
+pub use file::{discover_config_file, load_config_file, parse_config_text, ConfigError, CONFIG_FILE_NAME};
+
+use crate::diagnostics::{Code, Severity};
+use std::collections::BTreeMap;
+
+/// The two machine kinds whose reset state and axes differ by default.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum MachineKind {
+    Mill,
+    Turn,
+}
+
+/// How an axis moves, which decides the position modifiers it accepts and whether values are lengths.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum AxisKind {
+    /// A linear axis; values are lengths and are converted by G70/G700.
+    Linear,
+    /// A linear axis used for diameter programming (MD20100 `DIAMETER_AX_DEF`).
+    Transverse,
+    /// A rotary axis without modulo range; DC is allowed, ACP/ACN are not.
+    Rotary,
+    /// A rotary axis with modulo 360° range; DC, ACP and ACN are allowed.
+    Modulo,
+}
+
+impl AxisKind {
+    pub fn is_rotary(self) -> bool {
+        matches!(self, AxisKind::Rotary | AxisKind::Modulo)
+    }
+
+    pub fn as_str(self) -> &'static str {
+        match self {
+            AxisKind::Linear => "linear",
+            AxisKind::Transverse => "transverse",
+            AxisKind::Rotary => "rotary",
+            AxisKind::Modulo => "modulo",
+        }
+    }
+}
+
+/// One channel axis, by the name the part program uses (upper case).
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Axis {
+    pub name: String,
+    pub kind: AxisKind,
+}
+
+/// Everything the syntax and analysis layers need to know about the machine.
+#[derive(Debug, Clone, PartialEq)]
+pub struct MachineConfig {
+    pub kind: MachineKind,
+    /// Channel axes in the order geometry axes first (X, Y, Z for a mill).
+    pub axes: Vec<Axis>,
+    /// The basic unit system (MD10240 `SCALING_SYSTEM_IS_METRIC`).
+    pub metric: bool,
+    /// G functions active after reset, beyond the Siemens defaults (MD20150 `GCODE_RESET_VALUES`),
+    /// upper case, e.g. `["G18", "DIAMON"]` on a lathe.
+    pub reset_gcodes: Vec<String>,
+    /// MD21000 `CIRCLE_ERROR_CONST` in mm.
+    pub circle_error_const: f64,
+    /// MD21010 `CIRCLE_ERROR_FACTOR`.
+    pub circle_error_factor: f64,
+    /// Highest skip level the HMI offers; `/0` up to `/N` are valid.
+    pub max_skip_level: u8,
+    /// Longest block in characters, comment included, before a warning.
+    pub max_block_length: usize,
+    /// Number of R parameters (MD28050 `MM_NUM_R_PARAM`).
+    pub r_parameter_count: u32,
+    /// Severities chosen by the user for individual diagnostic codes.
+    pub severity_overrides: BTreeMap<Code, Severity>,
+    /// File extensions (without dot, compared case-insensitively) that `check` reads from folders.
+    pub extensions: Vec<String>,
+}
+
+impl Default for MachineConfig {
+    fn default() -> MachineConfig {
+        MachineConfig::mill()
+    }
+}
+
+impl MachineConfig {
+    /// A metric milling machine with X Y Z linear and A B C modulo rotary axes.
+    pub fn mill() -> MachineConfig {
+        MachineConfig {
+            kind: MachineKind::Mill,
+            axes: vec![
+                axis("X", AxisKind::Linear),
+                axis("Y", AxisKind::Linear),
+                axis("Z", AxisKind::Linear),
+                axis("A", AxisKind::Modulo),
+                axis("B", AxisKind::Modulo),
+                axis("C", AxisKind::Modulo),
+            ],
+            metric: true,
+            reset_gcodes: Vec::new(),
+            circle_error_const: 0.01,
+            circle_error_factor: 0.001,
+            max_skip_level: 9,
+            max_block_length: 512,
+            r_parameter_count: 100,
+            severity_overrides: BTreeMap::new(),
+            extensions: vec!["mpf".to_string(), "spf".to_string()],
+        }
+    }
+
+    /// A metric lathe: X transverse (diameter), Z linear, C modulo; G18 and DIAMON after reset.
+    pub fn turn() -> MachineConfig {
+        MachineConfig {
+            kind: MachineKind::Turn,
+            axes: vec![
+                axis("X", AxisKind::Transverse),
+                axis("Z", AxisKind::Linear),
+                axis("C", AxisKind::Modulo),
+            ],
+            reset_gcodes: vec!["G18".to_string(), "DIAMON".to_string()],
+            ..MachineConfig::mill()
+        }
+    }
+
+    /// The machine defaults for a kind.
+    pub fn for_kind(kind: MachineKind) -> MachineConfig {
+        match kind {
+            MachineKind::Mill => MachineConfig::mill(),
+            MachineKind::Turn => MachineConfig::turn(),
+        }
+    }
+
+    /// Looks an axis up by its name, case-insensitively.
+    pub fn axis(&self, name: &str) -> Option<&Axis> {
+        self.axes
+            .iter()
+            .find(|axis| axis.name.eq_ignore_ascii_case(name))
+    }
+
+    /// The severity a diagnostic code has on this machine, after the user's overrides.
+    pub fn severity_of(&self, code: Code) -> Severity {
+        self.severity_overrides
+            .get(&code)
+            .copied()
+            .unwrap_or_else(|| code.default_severity())
+    }
+
+    /// Whether `check` should read a file with this extension when it walks a folder.
+    pub fn accepts_extension(&self, extension: &str) -> bool {
+        self.extensions
+            .iter()
+            .any(|known| known.eq_ignore_ascii_case(extension))
+    }
+}
+
+fn axis(name: &str, kind: AxisKind) -> Axis {
+    Axis {
+        name: name.to_string(),
+        kind,
+    }
+}

@@ -1,0 +1,255 @@
+//! The vocabulary every layer uses to report problems: spans, severities, stable codes and suggested fixes.
+//!
+//! Nothing here knows about files, JSON or the Language Server Protocol; the CLI and the server convert
+//! these plain values at their edges.
+
+use std::fmt;
+
+/// A byte range inside one line of a program (end exclusive). Lines never exceed `u32::MAX` bytes
+/// because the reader refuses larger inputs, so `u32` keeps spans small.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
+pub struct Span {
+    pub start: u32,
+    pub end: u32,
+}
+
+impl Span {
+    pub fn new(start: usize, end: usize) -> Span {
+        Span {
+            start: start as u32,
+            end: end as u32,
+        }
+    }
+
+    pub fn start(self) -> usize {
+        self.start as usize
+    }
+
+    pub fn end(self) -> usize {
+        self.end as usize
+    }
+
+    pub fn len(self) -> usize {
+        (self.end - self.start) as usize
+    }
+
+    pub fn is_empty(self) -> bool {
+        self.end == self.start
+    }
+
+    /// The smallest span that covers both spans.
+    pub fn to(self, other: Span) -> Span {
+        Span {
+            start: self.start.min(other.start),
+            end: self.end.max(other.end),
+        }
+    }
+}
+
+/// How serious a finding is. The order matters: `Error` is the most severe.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash)]
+pub enum Severity {
+    Error,
+    Warning,
+    Information,
+    Hint,
+}
+
+impl Severity {
+    pub fn as_str(self) -> &'static str {
+        match self {
+            Severity::Error => "error",
+            Severity::Warning => "warning",
+            Severity::Information => "info",
+            Severity::Hint => "hint",
+        }
+    }
+
+    /// Parses the names used in configuration files and on the command line.
+    pub fn parse(text: &str) -> Option<Severity> {
+        match text.to_ascii_lowercase().as_str() {
+            "error" => Some(Severity::Error),
+            "warning" | "warn" => Some(Severity::Warning),
+            "info" | "information" => Some(Severity::Information),
+            "hint" => Some(Severity::Hint),
+            _ => None,
+        }
+    }
+}
+
+impl fmt::Display for Severity {
+    fn fmt(&self, formatter: &mut fmt::Formatter<'_>) -> fmt::Result {
+        formatter.write_str(self.as_str())
+    }
+}
+
+/// One replacement of a byte range of the line by new text.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct TextEdit {
+    pub span: Span,
+    pub new_text: String,
+}
+
+/// A machine-applicable suggestion carried with a diagnostic, later offered as an editor quick fix.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Fix {
+    /// What the fix does, as shown to the user, e.g. "Write `Z=AC(17)`".
+    pub title: String,
+    pub edits: Vec<TextEdit>,
+}
+
+impl Fix {
+    /// A fix that replaces one span.
+    pub fn replace(title: impl Into<String>, span: Span, new_text: impl Into<String>) -> Fix {
+        Fix {
+            title: title.into(),
+            edits: vec![TextEdit {
+                span,
+                new_text: new_text.into(),
+            }],
+        }
+    }
+}
+
+/// A finding inside one line: the span is relative to the start of that line.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Diagnostic {
+    pub code: Code,
+    pub severity: Severity,
+    pub span: Span,
+    pub message: String,
+    pub fix: Option<Fix>,
+}
+
+impl Diagnostic {
+    /// A diagnostic with the code's default severity and no fix.
+    pub fn new(code: Code, span: Span, message: impl Into<String>) -> Diagnostic {
+        Diagnostic {
+            code,
+            severity: code.default_severity(),
+            span,
+            message: message.into(),
+            fix: None,
+        }
+    }
+
+    pub fn with_fix(mut self, fix: Fix) -> Diagnostic {
+        self.fix = Some(fix);
+        self
+    }
+}
+
+/// A diagnostic together with the 0-based line it belongs to.
+#[derive(Debug, Clone, PartialEq)]
+pub struct LineDiagnostic {
+    pub line: usize,
+    pub diagnostic: Diagnostic,
+}
+
+macro_rules! codes {
+    ($( $variant:ident = $text:literal, $severity:ident, $summary:literal; )*) => {
+        /// Every diagnostic the product can report. The text form (`S101`, ...) is stable: it is
+        /// documented in the README, used in configuration files and must never be reused for
+        /// another meaning.
+        #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
+        pub enum Code {
+            $( $variant, )*
+        }
+
+        impl Code {
+            pub const ALL: &'static [Code] = &[$( Code::$variant, )*];
+
+            pub fn as_str(self) -> &'static str {
+                match self {
+                    $( Code::$variant => $text, )*
+                }
+            }
+
+            pub fn default_severity(self) -> Severity {
+                match self {
+                    $( Code::$variant => Severity::$severity, )*
+                }
+            }
+
+            /// A one-line description for the documentation and `--explain`-style listings.
+            pub fn summary(self) -> &'static str {
+                match self {
+                    $( Code::$variant => $summary, )*
+                }
+            }
+
+            pub fn parse(text: &str) -> Option<Code> {
+                Code::ALL.iter().copied().find(|code| code.as_str().eq_ignore_ascii_case(text))
+            }
+        }
+    };
+}
+
+codes! {
+    UnexpectedCharacter = "S100", Error, "A character that has no meaning in the NC language outside strings and comments.";
+    ModifierWithoutParentheses = "S101", Error, "A position modifier such as AC or IC is not followed by its value in parentheses (`Z=AC17`, `Z=AC 17`).";
+    ModifierUnclosed = "S102", Error, "A position modifier's parenthesis is not closed (`Z=AC(17`).";
+    ModifierEmpty = "S103", Error, "A position modifier has no value (`Z=AC()`).";
+    ModifierTooManyValues = "S104", Error, "A position modifier has more than one value (`Z=AC(1,2)`).";
+    ModifierNested = "S105", Error, "A position modifier inside another one (`Z=AC(IC(3))`).";
+    ModifierUnknown = "S106", Error, "An unknown position modifier after an axis address (`Z=AB(3)`).";
+    ModifierNotAllowed = "S107", Error, "A position modifier on an address that does not take one (F, S, T, D, M, H, N, G, L, P, CR, AR, RP, ...).";
+    ModifierOutsideAddress = "S108", Error, "A position modifier assigned to something that is not an address (`R1=AC(5)`).";
+    ModifierNeedsRotaryAxis = "S109", Error, "DC, ACP or ACN on an axis that is not rotary (ACP/ACN also need a modulo axis).";
+    ModifierWithoutEquals = "S110", Error, "A position modifier written without `=` (`Z AC(17)`).";
+    ModifierNeedsTransverseAxis = "S111", Warning, "DAC, DIC, RAC or RIC on an axis that is not configured as transverse (diameter) axis.";
+    NameReadAsCall = "S120", Warning, "A word the control reads as a call of a subprogram, most likely a missing `=` (`ZAC(17)`, `XR1`, `CR5`).";
+    UnbalancedParentheses = "S130", Error, "Parentheses that are not balanced.";
+    UnbalancedBrackets = "S131", Error, "Square brackets that are not balanced.";
+    UnterminatedString = "S132", Error, "A string without its closing `\"` on the same line (strings have no escapes).";
+    InvalidNumber = "S133", Error, "A malformed number or numeric literal.";
+    ParenthesisComment = "S134", Error, "Text in parentheses used as a comment; only `;` starts a comment in Siemens mode.";
+    SameGroupTwice = "S140", Error, "Two G functions of the same group in one block (alarm 12060).";
+    SyntaxDefiningConflict = "S141", Error, "More than one syntax-defining G function (groups 1, 2, 3) in one block (alarm 12070).";
+    InstructionNotAlone = "S142", Error, "A frame or pole instruction (TRANS, ROT, G110, ...) that is not alone in its block.";
+    AddressTwice = "S143", Error, "An address or axis programmed twice in one block (alarms 12010, 16420).";
+    UnknownGCode = "S144", Error, "A G function number that does not exist (alarm 12470).";
+    MissingValue = "S150", Error, "An address without its value (`X` alone; `X0` cannot be shortened to `X`).";
+    ValueNeedsEquals = "S151", Error, "A value that is not a single constant needs `=` after the address (`X=R1`, `X=-R2`).";
+    ExpectedExpression = "S152", Error, "An expression was expected here.";
+    UnexpectedToken = "S153", Error, "Something that cannot stand at this place in a block.";
+    InvalidSkipLevel = "S160", Error, "A skip level outside the configured range `/0` to `/9` (alarm 14060).";
+    InvalidLabel = "S161", Error, "A label name the control cannot accept (starts with a digit, or is an address letter).";
+    LabelStyle = "S162", Warning, "A label or name that breaks the naming recommendations (fewer than two leading letters, longer than 31 characters).";
+    BlockTooLong = "S163", Warning, "A block longer than the configured maximum (512 characters including the comment).";
+    TooDeeplyNested = "S170", Error, "An expression nested deeper than the parser accepts.";
+    UnknownFunction = "S171", Warning, "A call of a function the language does not define.";
+    ComparisonPrecedence = "S172", Warning, "A comparison whose operand is an unbracketed AND/OR expression; comparisons bind weakest.";
+    AxisNotConfigured = "S180", Warning, "An axis address that is not an axis of the configured machine.";
+    StructureMismatch = "S190", Error, "IF/ELSE/ENDIF, WHILE, FOR, REPEAT, LOOP nesting that does not match (alarm 12640).";
+}
+
+impl fmt::Display for Code {
+    fn fmt(&self, formatter: &mut fmt::Formatter<'_>) -> fmt::Result {
+        formatter.write_str(self.as_str())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn code_texts_are_unique_and_parse_back() {
+        let mut seen = std::collections::HashSet::new();
+        for code in Code::ALL {
+            assert!(seen.insert(code.as_str()), "duplicate code {}", code.as_str());
+            assert_eq!(Code::parse(code.as_str()), Some(*code));
+        }
+        assert_eq!(Code::parse("s101"), Some(Code::ModifierWithoutParentheses));
+        assert_eq!(Code::parse("S999"), None);
+    }
+
+    #[test]
+    fn severity_names_parse() {
+        assert_eq!(Severity::parse("Warning"), Some(Severity::Warning));
+        assert_eq!(Severity::parse("info"), Some(Severity::Information));
+        assert_eq!(Severity::parse("fatal"), None);
+        assert!(Severity::Error < Severity::Warning);
+    }
+}

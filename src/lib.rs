@@ -1,0 +1,9 @@
+//! sinumerik-lsp: a language server and command-line checker for SINUMERIK NC programs.
+//!
+//! Layers, from the bottom: `diagnostics` (shared vocabulary), `config` (machine data), `syntax`
+//! (lexer, parser, syntax diagnostics), `cli` (the command line). See ARCHITECTURE.md.
+
+pub mod cli;
+pub mod config;
+pub mod diagnostics;
+pub mod syntax;

@@ -1,0 +1,6 @@
+//! The `sinumerik-lsp` binary: everything lives in the library; this only passes the arguments in and
+//! the exit code out.
+
+fn main() -> std::process::ExitCode {
+    std::process::ExitCode::from(sinumerik_lsp::cli::run(std::env::args_os()))
+}

@@ -1,0 +1,460 @@
+//! The parsed form of one block. A block owns its expression nodes in a small arena (`exprs`) so that a
+//! caller can reuse one `Block` for every line of a program without allocating again.
+
+use crate::diagnostics::Span;
+use crate::syntax::gcodes::GCode;
+
+/// Index of an expression node in [`Block::exprs`].
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct ExprId(pub u32);
+
+/// A binary operator, in the control's precedence order (see `Expr`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum BinaryOp {
+    Multiply,
+    Divide,
+    IntegerDivide,
+    Modulo,
+    Add,
+    Subtract,
+    BitAnd,
+    BitXor,
+    BitOr,
+    And,
+    Xor,
+    Or,
+    Concat,
+    Equal,
+    NotEqual,
+    Less,
+    Greater,
+    LessEqual,
+    GreaterEqual,
+    /// The frame chain operator `:`.
+    Chain,
+}
+
+impl BinaryOp {
+    pub fn is_logical(self) -> bool {
+        matches!(
+            self,
+            BinaryOp::And
+                | BinaryOp::Or
+                | BinaryOp::Xor
+                | BinaryOp::BitAnd
+                | BinaryOp::BitOr
+                | BinaryOp::BitXor
+        )
+    }
+
+    pub fn is_comparison(self) -> bool {
+        matches!(
+            self,
+            BinaryOp::Equal
+                | BinaryOp::NotEqual
+                | BinaryOp::Less
+                | BinaryOp::Greater
+                | BinaryOp::LessEqual
+                | BinaryOp::GreaterEqual
+        )
+    }
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum UnaryOp {
+    Negate,
+    Plus,
+    Not,
+    BitNot,
+    /// `<<` with a right operand only: converts the operand to a string.
+    ToString,
+}
+
+/// One expression node.
+#[derive(Debug, Clone, PartialEq)]
+pub enum ExprKind {
+    Number(f64),
+    /// A string literal; the span (of the node) includes the quotes.
+    String,
+    /// `R1`, also written `$R1` in synchronized actions.
+    RParameter(u32),
+    /// `R[expr]`.
+    RParameterIndexed(ExprId),
+    /// A name: variable, parameter, axis (`X`, `X1`, `SP1`), constant (`TRUE`). `indexes` holds the
+    /// `[...]` arguments when present.
+    Name { indexes: Vec<ExprId> },
+    /// A system variable such as `$P_GG[13]`.
+    SystemVariable { indexes: Vec<ExprId> },
+    /// A function call `NAME(args)`; empty arguments (`F(1,,3)`) are `None`.
+    Call {
+        name: Span,
+        args: Vec<Option<ExprId>>,
+    },
+    Unary(UnaryOp, ExprId),
+    Binary(BinaryOp, ExprId, ExprId),
+    Parenthesized(ExprId),
+    /// Something that could not be parsed; a diagnostic has been reported.
+    Error,
+}
+
+#[derive(Debug, Clone, PartialEq)]
+pub struct Expr {
+    pub kind: ExprKind,
+    pub span: Span,
+}
+
+/// The non-modal position modifiers written as `X=AC(..)`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Modifier {
+    Ac,
+    Ic,
+    Dc,
+    Acp,
+    Acn,
+    Dac,
+    Dic,
+    Rac,
+    Ric,
+    Cac,
+    Cic,
+    Cdc,
+    Cacp,
+    Cacn,
+}
+
+impl Modifier {
+    pub const ALL: &'static [Modifier] = &[
+        Modifier::Ac,
+        Modifier::Ic,
+        Modifier::Dc,
+        Modifier::Acp,
+        Modifier::Acn,
+        Modifier::Dac,
+        Modifier::Dic,
+        Modifier::Rac,
+        Modifier::Ric,
+        Modifier::Cac,
+        Modifier::Cic,
+        Modifier::Cdc,
+        Modifier::Cacp,
+        Modifier::Cacn,
+    ];
+
+    pub fn from_name(name: &str) -> Option<Modifier> {
+        Modifier::ALL
+            .iter()
+            .copied()
+            .find(|modifier| modifier.as_str().eq_ignore_ascii_case(name))
+    }
+
+    pub fn as_str(self) -> &'static str {
+        match self {
+            Modifier::Ac => "AC",
+            Modifier::Ic => "IC",
+            Modifier::Dc => "DC",
+            Modifier::Acp => "ACP",
+            Modifier::Acn => "ACN",
+            Modifier::Dac => "DAC",
+            Modifier::Dic => "DIC",
+            Modifier::Rac => "RAC",
+            Modifier::Ric => "RIC",
+            Modifier::Cac => "CAC",
+            Modifier::Cic => "CIC",
+            Modifier::Cdc => "CDC",
+            Modifier::Cacp => "CACP",
+            Modifier::Cacn => "CACN",
+        }
+    }
+
+    /// DC, ACP and ACN approach a rotary target by a chosen direction.
+    pub fn needs_rotary_axis(self) -> bool {
+        matches!(self, Modifier::Dc | Modifier::Acp | Modifier::Acn)
+    }
+
+    /// ACP and ACN only make sense on a modulo axis.
+    pub fn needs_modulo_axis(self) -> bool {
+        matches!(self, Modifier::Acp | Modifier::Acn)
+    }
+
+    /// DAC, DIC, RAC and RIC give diameter or radius values of a transverse axis.
+    pub fn needs_transverse_axis(self) -> bool {
+        matches!(
+            self,
+            Modifier::Dac | Modifier::Dic | Modifier::Rac | Modifier::Ric
+        )
+    }
+}
+
+/// What an address word addresses. Axis names are kept as text in the word's `name` span.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum AddressKind {
+    /// A configured axis, or an axis letter that is not configured (reported separately).
+    Axis,
+    /// I, J, K: circle centre (and I1, J1, K1: CIP intermediate point).
+    Interpolation,
+    Feed,
+    Spindle,
+    Tool,
+    ToolEdge,
+    MFunction,
+    HFunction,
+    /// `L123`: subprogram by number.
+    SubprogramNumber,
+    /// `P3`: number of repetitions of a subprogram call.
+    Repetitions,
+    /// CR, AR, AP, RP, TURN, RPL and the other multi-letter addresses that take a plain value.
+    Named(NamedAddress),
+}
+
+/// The multi-letter addresses the parser knows, with their rules for modifiers.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum NamedAddress {
+    CircleRadius,
+    OpeningAngle,
+    PolarAngle,
+    PolarRadius,
+    Turns,
+    RotationInPlane,
+    /// `POS[X]`, `POSA[X]`, `SPOS`, `SPOSA`: positioning axes and spindles, which take all modifiers.
+    Positioning,
+    /// Any other known address (`LIMS`, `FA[X]`, `OVR`, `CHF`, `RND`, ...): no position modifiers.
+    Other,
+}
+
+impl AddressKind {
+    /// Whether `=AC(..)` and friends are allowed on this address (reference §1.8).
+    pub fn accepts_modifier(self) -> bool {
+        matches!(
+            self,
+            AddressKind::Axis
+                | AddressKind::Interpolation
+                | AddressKind::Named(NamedAddress::PolarAngle)
+                | AddressKind::Named(NamedAddress::Positioning)
+        )
+    }
+}
+
+/// The value part of an address word.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Value {
+    /// The position modifier and the span of its name, if one was written.
+    pub modifier: Option<(Modifier, Span)>,
+    /// The value expression (inside the modifier's parentheses when there is one). `None` when it is
+    /// missing; a diagnostic has been reported then.
+    pub expr: Option<ExprId>,
+    /// Whether `=` was written.
+    pub has_equals: bool,
+}
+
+/// An address with its value, e.g. `X10`, `Z=IC(-32)`, `X1=10`, `S1=470`, `CR=5`, `POS[A]=DC(10)`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct AddressWord {
+    pub kind: AddressKind,
+    /// The address name without extension (`X`, `CR`, `POS`).
+    pub name: Span,
+    /// The numeric extension (`1` in `X1=10`) or the bracketed index (`[X]` in `POS[X]`).
+    pub extension: Option<Extension>,
+    pub value: Value,
+    /// The whole word.
+    pub span: Span,
+}
+
+#[derive(Debug, Clone, PartialEq)]
+pub enum Extension {
+    /// Digits written right after the address letter and followed by `=`.
+    Number { value: u32, span: Span },
+    /// `[expr, ...]` after the address.
+    Index { indexes: Vec<ExprId>, span: Span },
+}
+
+/// The left side of an assignment that is not an address word.
+#[derive(Debug, Clone, PartialEq)]
+pub enum AssignTarget {
+    RParameter(u32),
+    RParameterIndexed(ExprId),
+    /// A user variable or PROC parameter, possibly indexed.
+    Variable { indexes: Vec<ExprId> },
+    SystemVariable { indexes: Vec<ExprId> },
+    /// `G[8]=2`: select a G function of a group by number.
+    GGroup { group: ExprId },
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum JumpKind {
+    Gotof,
+    Gotob,
+    Goto,
+    Gotoc,
+    Gotos,
+}
+
+/// Where a jump goes.
+#[derive(Debug, Clone, PartialEq)]
+pub enum JumpTarget {
+    Label(Span),
+    BlockNumber { value: u64, span: Span },
+    /// A string expression evaluated at run time.
+    Computed(ExprId),
+    /// Nothing was written after the jump keyword (only `GOTOS` may stand alone).
+    None,
+}
+
+/// How a subprogram is called.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum CallKind {
+    /// A bare name, or `NAME(args)`.
+    Named,
+    /// `CALL`, `PCALL`, `EXTCALL`: indirect or external calls.
+    Indirect,
+    /// `MCALL NAME(args)`: modal call; `MCALL` alone switches it off.
+    Modal,
+}
+
+/// The control-flow and declaration keywords that shape a program across blocks.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum StructureKeyword {
+    If,
+    Else,
+    EndIf,
+    While,
+    EndWhile,
+    For,
+    EndFor,
+    Repeat,
+    Until,
+    Loop,
+    EndLoop,
+    Case,
+}
+
+#[derive(Debug, Clone, PartialEq)]
+pub enum Statement {
+    /// A G function written by number (`G1`) or by name (`DIAMON`, `TRANS`).
+    GCode { code: GCode, span: Span },
+    /// A G number that does not exist; reported with S144.
+    UnknownGCode { number: u32, span: Span },
+    Address(AddressWord),
+    Assignment {
+        target: AssignTarget,
+        /// The name (or whole target) as written.
+        target_span: Span,
+        value: Option<ExprId>,
+        span: Span,
+    },
+    /// A structure keyword with its expression (the condition of IF/WHILE/UNTIL/CASE, the end
+    /// value of FOR).
+    Structure {
+        keyword: StructureKeyword,
+        condition: Option<ExprId>,
+        span: Span,
+    },
+    Jump {
+        kind: JumpKind,
+        target: JumpTarget,
+        span: Span,
+    },
+    /// A subprogram or cycle call. `name` is the span of the called name (the string for `CALL "X"`).
+    Call {
+        kind: CallKind,
+        name: Option<Span>,
+        args: Vec<Option<ExprId>>,
+        span: Span,
+    },
+    /// `DEF ...` declarations with the spans of the declared names.
+    Definition { names: Vec<Span>, span: Span },
+    /// `DEFINE name AS body`.
+    MacroDefinition { name: Option<Span>, body: Span, span: Span },
+    /// `PROC name(params) attributes`, with the spans of the parameter names.
+    ProcedureHeader {
+        name: Option<Span>,
+        parameters: Vec<Span>,
+        span: Span,
+    },
+    /// `EXTERN name(types)`.
+    ExternDeclaration { name: Option<Span>, span: Span },
+    /// `RET`.
+    Return { span: Span },
+    /// A predefined instruction without G group (`STOPRE`, `TRAORI`, `MSG(..)`, `WRITE(..)`, ...),
+    /// with its arguments when it has parentheses.
+    Instruction {
+        name: Span,
+        args: Vec<Option<ExprId>>,
+        span: Span,
+    },
+    /// `WHEN`/`WHENEVER`/`FROM`/`EVERY` condition `DO`: the statements after it in the block are
+    /// actions of the main run.
+    SyncCondition { condition: Option<ExprId>, span: Span },
+}
+
+impl Statement {
+    pub fn span(&self) -> Span {
+        match self {
+            Statement::GCode { span, .. }
+            | Statement::UnknownGCode { span, .. }
+            | Statement::Assignment { span, .. }
+            | Statement::Structure { span, .. }
+            | Statement::Jump { span, .. }
+            | Statement::Call { span, .. }
+            | Statement::Definition { span, .. }
+            | Statement::MacroDefinition { span, .. }
+            | Statement::ProcedureHeader { span, .. }
+            | Statement::ExternDeclaration { span, .. }
+            | Statement::Return { span }
+            | Statement::Instruction { span, .. }
+            | Statement::SyncCondition { span, .. } => *span,
+            Statement::Address(word) => word.span,
+        }
+    }
+}
+
+/// `N10` or `:10` at the start of a block.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct BlockNumber {
+    pub value: u64,
+    /// `:10` marks a main block.
+    pub main: bool,
+    pub span: Span,
+}
+
+/// One parsed line. Spans are byte offsets into the line.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct Block {
+    /// Skip level (`/` is level 0) and the span of the marker.
+    pub skip: Option<(u8, Span)>,
+    pub number: Option<BlockNumber>,
+    /// The label name, without its colon.
+    pub label: Option<Span>,
+    pub statements: Vec<Statement>,
+    pub comment: Option<Span>,
+    /// Index in `statements` from which on the statements are actions of a synchronized action.
+    pub sync_actions_from: Option<usize>,
+    /// The line is a program header in punched-tape format (`%_N_NAME_MPF`).
+    pub is_header: bool,
+    pub exprs: Vec<Expr>,
+}
+
+impl Block {
+    /// Empties the block but keeps its allocations for the next line.
+    pub fn clear(&mut self) {
+        self.skip = None;
+        self.number = None;
+        self.label = None;
+        self.statements.clear();
+        self.comment = None;
+        self.sync_actions_from = None;
+        self.is_header = false;
+        self.exprs.clear();
+    }
+
+    pub fn expr(&self, id: ExprId) -> &Expr {
+        &self.exprs[id.0 as usize]
+    }
+
+    /// The statements the interpreter executes (not the main-run actions of a synchronized action).
+    pub fn interpreted_statements(&self) -> &[Statement] {
+        match self.sync_actions_from {
+            Some(index) => &self.statements[..index],
+            None => &self.statements,
+        }
+    }
+}

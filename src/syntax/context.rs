@@ -1,0 +1,46 @@
+//! What the parser needs to know about the machine, prepared once from the configuration.
+
+use crate::config::{AxisKind, MachineConfig};
+
+/// Axis names and limits the syntax checks depend on.
+#[derive(Debug, Clone)]
+pub struct SyntaxContext {
+    /// Upper-case axis names with their kinds.
+    axes: Vec<(String, AxisKind)>,
+    pub max_skip_level: u8,
+    pub max_block_length: usize,
+}
+
+impl SyntaxContext {
+    pub fn new(config: &MachineConfig) -> SyntaxContext {
+        SyntaxContext {
+            axes: config
+                .axes
+                .iter()
+                .map(|axis| (axis.name.to_ascii_uppercase(), axis.kind))
+                .collect(),
+            max_skip_level: config.max_skip_level,
+            max_block_length: config.max_block_length,
+        }
+    }
+
+    /// The kind of a configured axis, by name in any case.
+    pub fn axis_kind(&self, name: &str) -> Option<AxisKind> {
+        self.axes
+            .iter()
+            .find(|(axis, _)| axis.eq_ignore_ascii_case(name))
+            .map(|(_, kind)| *kind)
+    }
+
+    /// The configured axes for messages, e.g. "axes X, Y, Z".
+    pub fn axis_list(&self) -> String {
+        let names: Vec<&str> = self.axes.iter().map(|(name, _)| name.as_str()).collect();
+        format!("axes {}", names.join(", "))
+    }
+}
+
+impl Default for SyntaxContext {
+    fn default() -> SyntaxContext {
+        SyntaxContext::new(&MachineConfig::default())
+    }
+}

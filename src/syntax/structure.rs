@@ -1,0 +1,157 @@
+//! Checks across blocks that need only syntax: control structures must nest (IF/ELSE/ENDIF, WHILE,
+//! FOR, REPEAT/UNTIL, LOOP), as the control demands before it runs a program (alarm 12640).
+
+use crate::diagnostics::{Code, Diagnostic, LineDiagnostic, Span};
+use crate::syntax::ast::{Block, Statement, StructureKeyword};
+
+/// An open structure: its keyword, line and span.
+struct Open {
+    keyword: StructureKeyword,
+    line: usize,
+    span: Span,
+    has_else: bool,
+}
+
+/// Follows the structure keywords of a program block by block.
+#[derive(Default)]
+pub struct StructureChecker {
+    open: Vec<Open>,
+}
+
+fn name(keyword: StructureKeyword) -> &'static str {
+    match keyword {
+        StructureKeyword::If => "IF",
+        StructureKeyword::Else => "ELSE",
+        StructureKeyword::EndIf => "ENDIF",
+        StructureKeyword::While => "WHILE",
+        StructureKeyword::EndWhile => "ENDWHILE",
+        StructureKeyword::For => "FOR",
+        StructureKeyword::EndFor => "ENDFOR",
+        StructureKeyword::Repeat => "REPEAT",
+        StructureKeyword::Until => "UNTIL",
+        StructureKeyword::Loop => "LOOP",
+        StructureKeyword::EndLoop => "ENDLOOP",
+        StructureKeyword::Case => "CASE",
+    }
+}
+
+/// The keyword that closes an opening keyword.
+fn closer(keyword: StructureKeyword) -> Option<StructureKeyword> {
+    Some(match keyword {
+        StructureKeyword::If => StructureKeyword::EndIf,
+        StructureKeyword::While => StructureKeyword::EndWhile,
+        StructureKeyword::For => StructureKeyword::EndFor,
+        StructureKeyword::Repeat => StructureKeyword::Until,
+        StructureKeyword::Loop => StructureKeyword::EndLoop,
+        _ => return None,
+    })
+}
+
+impl StructureChecker {
+    /// Feeds one block; diagnostics go to `out` with `line`.
+    pub fn feed(&mut self, line: usize, block: &Block, out: &mut Vec<LineDiagnostic>) {
+        for statement in block.interpreted_statements() {
+            let Statement::Structure { keyword, span, .. } = statement else {
+                continue;
+            };
+            let keyword = *keyword;
+            if closer(keyword).is_some() {
+                self.open.push(Open {
+                    keyword,
+                    line,
+                    span: *span,
+                    has_else: false,
+                });
+                continue;
+            }
+            match keyword {
+                StructureKeyword::Else => match self.open.last_mut() {
+                    Some(open) if open.keyword == StructureKeyword::If && !open.has_else => {
+                        open.has_else = true;
+                    }
+                    Some(open) if open.keyword == StructureKeyword::If => out.push(mismatch(
+                        line,
+                        *span,
+                        "a second ELSE in the same IF".to_string(),
+                    )),
+                    _ => out.push(mismatch(
+                        line,
+                        *span,
+                        format!("ELSE without IF{}", self.innermost_note()),
+                    )),
+                },
+                StructureKeyword::Case => {}
+                closing => {
+                    let expected_opener = [
+                        StructureKeyword::If,
+                        StructureKeyword::While,
+                        StructureKeyword::For,
+                        StructureKeyword::Repeat,
+                        StructureKeyword::Loop,
+                    ]
+                    .into_iter()
+                    .find(|opener| closer(*opener) == Some(closing));
+                    match self.open.last() {
+                        Some(open) if closer(open.keyword) == Some(closing) => {
+                            self.open.pop();
+                        }
+                        _ => {
+                            let opener = expected_opener.map(name).unwrap_or("?");
+                            out.push(mismatch(
+                                line,
+                                *span,
+                                format!(
+                                    "{} without matching {opener}{}",
+                                    name(closing),
+                                    self.innermost_note()
+                                ),
+                            ));
+                            // Recover: close the nearest matching structure, if there is one.
+                            if let Some(index) = self
+                                .open
+                                .iter()
+                                .rposition(|open| closer(open.keyword) == Some(closing))
+                            {
+                                self.open.truncate(index);
+                            }
+                        }
+                    }
+                }
+            }
+        }
+    }
+
+    fn innermost_note(&self) -> String {
+        match self.open.last() {
+            Some(open) => format!(
+                " (the innermost open structure is {} on line {}, closed by {})",
+                name(open.keyword),
+                open.line + 1,
+                closer(open.keyword).map(name).unwrap_or("?")
+            ),
+            None => String::new(),
+        }
+    }
+
+    /// Reports every structure still open at the end of the program.
+    pub fn finish(self, out: &mut Vec<LineDiagnostic>) {
+        for open in self.open {
+            out.push(mismatch(
+                open.line,
+                open.span,
+                format!(
+                    "{} is never closed by {}",
+                    name(open.keyword),
+                    closer(open.keyword).map(name).unwrap_or("?")
+                ),
+            ));
+        }
+    }
+}
+
+fn mismatch(line: usize, span: Span, message: String) -> LineDiagnostic {
+    LineDiagnostic {
+        line,
+        diagnostic: Diagnostic::new(Code::StructureMismatch, span, format!("{message} (alarm 12640)")),
+    }
+}
