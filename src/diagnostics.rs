@@ -220,8 +220,10 @@ codes! {
     TooDeeplyNested = "S170", Error, "An expression nested deeper than the parser accepts.";
     UnknownFunction = "S171", Warning, "A call of a function the language does not define.";
     ComparisonPrecedence = "S172", Warning, "A comparison whose operand is an unbracketed AND/OR expression; comparisons bind weakest.";
+    UnknownNameBetweenOperands = "S173", Warning, "A name standing between two operands, most likely a macro (DEFINE) whose definition is not known.";
+    ComparisonSpelling = "S174", Warning, "A comparison written `=`, `=<` or `=>` instead of `==`, `<=` or `>=`.";
     AxisNotConfigured = "S180", Warning, "An axis address that is not an axis of the configured machine.";
-    StructureMismatch = "S190", Error, "IF/ELSE/ENDIF, WHILE, FOR, REPEAT, LOOP nesting that does not match (alarm 12640).";
+    StructureMismatch = "S190", Warning, "IF/ELSE/ENDIF, WHILE, FOR, REPEAT, LOOP nesting that does not match (alarm 12640).";
 }
 
 impl fmt::Display for Code {

@@ -9,7 +9,7 @@ use std::path::PathBuf;
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub(crate) enum Command {
     /// No command at all: what an editor runs to start the language server.
-    NoCommand,
+    LanguageServer,
     Help,
     Version,
     Check(CheckOptions),
@@ -52,7 +52,7 @@ impl From<lexopt::Error> for UsageError {
 pub(crate) fn parse_args(args: impl IntoIterator<Item = OsString>) -> Result<Command, UsageError> {
     let mut parser = lexopt::Parser::from_iter(args);
     let Some(first) = parser.next()? else {
-        return Ok(Command::NoCommand);
+        return Ok(Command::LanguageServer);
     };
     match first {
         Short('h') | Long("help") => Ok(Command::Help),
@@ -144,20 +144,29 @@ mod tests {
 
     #[test]
     fn top_level_commands() {
-        assert_eq!(parse(&[]), Ok(Command::NoCommand));
+        assert_eq!(parse(&[]), Ok(Command::LanguageServer));
         assert_eq!(parse(&["--help"]), Ok(Command::Help));
         assert_eq!(parse(&["-h"]), Ok(Command::Help));
         assert_eq!(parse(&["--version"]), Ok(Command::Version));
         assert_eq!(parse(&["check", "--help"]), Ok(Command::Help));
-        assert!(parse(&["lint", "a.mpf"]).unwrap_err().0.contains("unknown command"));
-        assert!(parse(&["--frobnicate"]).unwrap_err().0.contains("--frobnicate"));
+        assert!(parse(&["lint", "a.mpf"])
+            .unwrap_err()
+            .0
+            .contains("unknown command"));
+        assert!(parse(&["--frobnicate"])
+            .unwrap_err()
+            .0
+            .contains("--frobnicate"));
     }
 
     #[test]
     fn check_options_are_read() {
         let options = check_options(&["check", "a.mpf", "dir"]);
         assert_eq!(options.format, OutputFormat::Human);
-        assert_eq!(options.paths, vec![PathBuf::from("a.mpf"), PathBuf::from("dir")]);
+        assert_eq!(
+            options.paths,
+            vec![PathBuf::from("a.mpf"), PathBuf::from("dir")]
+        );
         assert_eq!(options.config_path, None);
         assert_eq!(options.extensions, None);
 
@@ -183,9 +192,18 @@ mod tests {
     #[test]
     fn check_usage_errors() {
         assert!(parse(&["check"]).unwrap_err().0.contains("at least one"));
-        assert!(parse(&["check", "--format", "xml", "a"]).unwrap_err().0.contains("xml"));
-        assert!(parse(&["check", "a", "--format"]).unwrap_err().0.contains("--format"));
+        assert!(parse(&["check", "--format", "xml", "a"])
+            .unwrap_err()
+            .0
+            .contains("xml"));
+        assert!(parse(&["check", "a", "--format"])
+            .unwrap_err()
+            .0
+            .contains("--format"));
         assert!(parse(&["check", "--extensions", "mpf,,spf", "a"]).is_err());
-        assert!(parse(&["check", "--colour", "a"]).unwrap_err().0.contains("--colour"));
+        assert!(parse(&["check", "--colour", "a"])
+            .unwrap_err()
+            .0
+            .contains("--colour"));
     }
 }

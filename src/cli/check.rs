@@ -16,7 +16,11 @@ use std::rc::Rc;
 /// Runs `check` and returns the exit code. Problems with inputs (unreadable paths, bad configuration
 /// files) go to `stderr` and do not stop the run, so one bad file does not hide the findings in the
 /// others; the `Err` case is only a failure to write the output itself.
-pub(crate) fn run_check(options: &CheckOptions, stdout: &mut dyn Write, stderr: &mut dyn Write) -> io::Result<u8> {
+pub(crate) fn run_check(
+    options: &CheckOptions,
+    stdout: &mut dyn Write,
+    stderr: &mut dyn Write,
+) -> io::Result<u8> {
     let mut problems = ProblemReporter {
         stderr,
         any_problem: false,
@@ -84,25 +88,34 @@ pub(crate) fn run_check(options: &CheckOptions, stdout: &mut dyn Write, stderr: 
 
         let mut line_diagnostics = crate::syntax::check_program(&source.text, &config);
         // The checker's order is not a promise; people read the output from top to bottom.
-        line_diagnostics.sort_by_key(|line_diagnostic| (line_diagnostic.line, line_diagnostic.diagnostic.span.start));
+        line_diagnostics.sort_by_key(|line_diagnostic| {
+            (line_diagnostic.line, line_diagnostic.diagnostic.span.start)
+        });
         let lines = ProgramLines::new(&source.text);
         let path_text = path.display().to_string();
         for line_diagnostic in &line_diagnostics {
             counts.add(line_diagnostic.diagnostic.severity);
             match options.format {
-                OutputFormat::Human => report::write_human(stdout, &path_text, &lines, line_diagnostic)?,
+                OutputFormat::Human => {
+                    report::write_human(stdout, &path_text, &lines, line_diagnostic)?
+                }
                 OutputFormat::Json => {
                     // One object per line inside the array: valid JSON that is still easy to grep.
                     let separator = if n_json_diagnostics == 0 { "\n" } else { ",\n" };
                     write!(stdout, "{separator}")?;
-                    serde_json::to_writer(&mut *stdout, &JsonDiagnostic::new(&path_text, &lines, line_diagnostic))?;
+                    serde_json::to_writer(
+                        &mut *stdout,
+                        &JsonDiagnostic::new(&path_text, &lines, line_diagnostic),
+                    )?;
                     n_json_diagnostics += 1;
                 }
             }
         }
     }
     match options.format {
-        OutputFormat::Human => writeln!(stdout, "{}", report::summary_line(n_checked_files, counts))?,
+        OutputFormat::Human => {
+            writeln!(stdout, "{}", report::summary_line(n_checked_files, counts))?
+        }
         OutputFormat::Json if n_json_diagnostics == 0 => writeln!(stdout, "]")?,
         OutputFormat::Json => writeln!(stdout, "\n]")?,
     }
@@ -118,11 +131,19 @@ pub(crate) fn run_check(options: &CheckOptions, stdout: &mut dyn Write, stderr: 
 
 /// Collects the files below `folder` whose extension the folder's configuration accepts, in sorted
 /// order so that the output is the same on every run and every filesystem.
-fn walk_folder(folder: &Path, configs: &mut ConfigCache, problems: &mut ProblemReporter<'_>, files: &mut Vec<PathBuf>) {
+fn walk_folder(
+    folder: &Path,
+    configs: &mut ConfigCache,
+    problems: &mut ProblemReporter<'_>,
+    files: &mut Vec<PathBuf>,
+) {
     let entries = match fs::read_dir(folder) {
         Ok(entries) => entries,
         Err(io_error) => {
-            problems.report(format_args!("{}: cannot read the folder: {io_error}", folder.display()));
+            problems.report(format_args!(
+                "{}: cannot read the folder: {io_error}",
+                folder.display()
+            ));
             return;
         }
     };
@@ -130,7 +151,10 @@ fn walk_folder(folder: &Path, configs: &mut ConfigCache, problems: &mut ProblemR
         .filter_map(|entry| match entry {
             Ok(entry) => Some(entry),
             Err(io_error) => {
-                problems.report(format_args!("{}: cannot read the folder: {io_error}", folder.display()));
+                problems.report(format_args!(
+                    "{}: cannot read the folder: {io_error}",
+                    folder.display()
+                ));
                 None
             }
         })
@@ -201,7 +225,11 @@ impl ConfigCache {
     }
 
     /// The configuration for programs in `folder`, or `None` when its configuration file is broken.
-    fn for_folder(&mut self, folder: &Path, problems: &mut ProblemReporter<'_>) -> Option<Rc<MachineConfig>> {
+    fn for_folder(
+        &mut self,
+        folder: &Path,
+        problems: &mut ProblemReporter<'_>,
+    ) -> Option<Rc<MachineConfig>> {
         if let Some(fixed) = &self.fixed {
             return Some(Rc::clone(fixed));
         }
@@ -241,4 +269,3 @@ impl ProblemReporter<'_> {
         let _ = writeln!(self.stderr, "error: {message}");
     }
 }
-

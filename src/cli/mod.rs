@@ -65,16 +65,23 @@ pub fn run(args: impl IntoIterator<Item = OsString>) -> u8 {
 }
 
 /// [`run`] with the output streams passed in, so that tests can capture them.
-pub fn run_with_output(args: impl IntoIterator<Item = OsString>, stdout: &mut dyn Write, stderr: &mut dyn Write) -> u8 {
+pub fn run_with_output(
+    args: impl IntoIterator<Item = OsString>,
+    stdout: &mut dyn Write,
+    stderr: &mut dyn Write,
+) -> u8 {
     let command = match parse_args(args) {
         Ok(command) => command,
         Err(usage_error) => {
-            let _ = writeln!(stderr, "error: {usage_error}\nRun `sinumerik-lsp --help` for usage.");
+            let _ = writeln!(
+                stderr,
+                "error: {usage_error}\nRun `sinumerik-lsp --help` for usage."
+            );
             return EXIT_TROUBLE;
         }
     };
     let result = match command {
-        Command::NoCommand => {
+        Command::LanguageServer => {
             // Editors start a language server by running its binary without arguments, so this is
             // the one place where the server will start. Until it exists, no command is a usage error.
             let _ = write!(stderr, "sinumerik-lsp: a command is needed.\n\n{USAGE}");
@@ -106,7 +113,9 @@ mod tests {
     fn run_captured(args: &[&str]) -> (u8, String, String) {
         let mut stdout = Vec::new();
         let mut stderr = Vec::new();
-        let args = std::iter::once("sinumerik-lsp").chain(args.iter().copied()).map(OsString::from);
+        let args = std::iter::once("sinumerik-lsp")
+            .chain(args.iter().copied())
+            .map(OsString::from);
         let exit_code = run_with_output(args, &mut stdout, &mut stderr);
         (
             exit_code,
@@ -130,7 +139,10 @@ mod tests {
         assert!(stdout.contains("--extensions"), "{stdout}");
         let (exit_code, stdout, _) = run_captured(&["--version"]);
         assert_eq!(exit_code, EXIT_OK);
-        assert_eq!(stdout, format!("sinumerik-lsp {}\n", env!("CARGO_PKG_VERSION")));
+        assert_eq!(
+            stdout,
+            format!("sinumerik-lsp {}\n", env!("CARGO_PKG_VERSION"))
+        );
     }
 
     #[test]
@@ -154,7 +166,10 @@ mod tests {
         }
         let mut stderr = Vec::new();
         let args = ["sinumerik-lsp", "--version"].map(OsString::from);
-        assert_eq!(run_with_output(args, &mut BrokenPipe, &mut stderr), EXIT_TROUBLE);
+        assert_eq!(
+            run_with_output(args, &mut BrokenPipe, &mut stderr),
+            EXIT_TROUBLE
+        );
         assert!(stderr.is_empty());
     }
 }

@@ -137,10 +137,14 @@ pub(crate) fn write_human(
     let line = lines.line(line_diagnostic.line);
     let line_number = line_diagnostic.line + 1;
     let (start_column, _) = char_columns(line, diagnostic.span);
+    // Messages quote the program's text and paths can hold anything, so both are made safe too.
     writeln!(
         out,
-        "{path}:{line_number}:{start_column}: {}[{}]: {}",
-        diagnostic.severity, diagnostic.code, diagnostic.message
+        "{}:{line_number}:{start_column}: {}[{}]: {}",
+        terminal_safe(path),
+        diagnostic.severity,
+        diagnostic.code,
+        terminal_safe(&diagnostic.message)
     )?;
 
     let gutter_width = MIN_GUTTER_WIDTH.max(line_number.to_string().len());
@@ -148,7 +152,12 @@ pub(crate) fn write_human(
     writeln!(out, "{line_number:>gutter_width$} | {}", excerpt.shown_text)?;
     writeln!(out, "{:>gutter_width$} | {}", "", excerpt.underline)?;
     if let Some(fix) = &diagnostic.fix {
-        writeln!(out, "{:>gutter_width$} = fix: {}", "", fix.title)?;
+        writeln!(
+            out,
+            "{:>gutter_width$} = fix: {}",
+            "",
+            terminal_safe(&fix.title)
+        )?;
     }
     Ok(())
 }
@@ -214,6 +223,10 @@ fn printable(character: char) -> char {
     }
 }
 
+fn terminal_safe(text: &str) -> String {
+    text.chars().map(printable).collect()
+}
+
 /// One diagnostic of the JSON format. Lines and columns are 1-based, columns count characters (Unicode
 /// scalar values), and the end column is the one after the last character.
 #[derive(Serialize)]
@@ -245,7 +258,11 @@ struct JsonEdit<'a> {
 }
 
 impl<'a> JsonDiagnostic<'a> {
-    pub fn new(path: &'a str, lines: &ProgramLines<'_>, line_diagnostic: &'a LineDiagnostic) -> JsonDiagnostic<'a> {
+    pub fn new(
+        path: &'a str,
+        lines: &ProgramLines<'_>,
+        line_diagnostic: &'a LineDiagnostic,
+    ) -> JsonDiagnostic<'a> {
         let diagnostic = &line_diagnostic.diagnostic;
         let line = lines.line(line_diagnostic.line);
         let line_number = line_diagnostic.line + 1;
@@ -331,9 +348,11 @@ mod tests {
     fn human_format_matches_the_compiler_style() {
         let text = "N10 G0\nN20 X75 Z=AC17\n";
         let mut line_diagnostic = s101(1, 8, 14);
-        line_diagnostic.diagnostic = line_diagnostic
-            .diagnostic
-            .with_fix(Fix::replace("write `Z=AC(17)`", Span::new(8, 14), "Z=AC(17)"));
+        line_diagnostic.diagnostic = line_diagnostic.diagnostic.with_fix(Fix::replace(
+            "write `Z=AC(17)`",
+            Span::new(8, 14),
+            "Z=AC(17)",
+        ));
         assert_eq!(
             render_human(text, &line_diagnostic),
             "P.MPF:2:9: error[S101]: modifier AC needs its value in parentheses\n\
@@ -364,7 +383,16 @@ mod tests {
         let rendered = render_human("N1 \u{1b}[31m\0X", &s101(0, 4, 5));
         assert!(!rendered.contains('\u{1b}'), "{rendered:?}");
         assert!(!rendered.contains('\0'), "{rendered:?}");
-        assert!(rendered.contains("N1 \u{FFFD}[31m\u{FFFD}X"), "{rendered:?}");
+        assert!(
+            rendered.contains("N1 \u{FFFD}[31m\u{FFFD}X"),
+            "{rendered:?}"
+        );
+
+        let mut line_diagnostic = s101(0, 0, 1);
+        line_diagnostic.diagnostic.message = "`\u{1b}[2J` cannot stand here".to_string();
+        line_diagnostic.diagnostic.fix = Some(Fix::replace("remove `\u{7}`", Span::new(0, 1), ""));
+        let rendered = render_human("X", &line_diagnostic);
+        assert!(!rendered.contains(['\u{1b}', '\u{7}']), "{rendered:?}");
     }
 
     #[test]
@@ -376,7 +404,10 @@ mod tests {
         let shown_lines: Vec<&str> = rendered.lines().collect();
         let text_line = shown_lines[1];
         let caret_line = shown_lines[2];
-        let caret_column = caret_line.chars().position(|character| character == '^').unwrap();
+        let caret_column = caret_line
+            .chars()
+            .position(|character| character == '^')
+            .unwrap();
         let text_from_caret: String = text_line.chars().skip(caret_column).take(6).collect();
         assert_eq!(text_from_caret, "Z=AC17");
     }
@@ -389,25 +420,34 @@ mod tests {
             infos: 0,
             hints: 0,
         };
-        assert_eq!(summary_line(3, counts), "checked 3 files: 2 errors, 1 warning, 0 infos");
+        assert_eq!(
+            summary_line(3, counts),
+            "checked 3 files: 2 errors, 1 warning, 0 infos"
+        );
         let counts = SeverityCounts {
             errors: 1,
             warnings: 0,
             infos: 1,
             hints: 2,
         };
-        assert_eq!(summary_line(1, counts), "checked 1 file: 1 error, 0 warnings, 1 info, 2 hints");
+        assert_eq!(
+            summary_line(1, counts),
+            "checked 1 file: 1 error, 0 warnings, 1 info, 2 hints"
+        );
     }
 
     #[test]
     fn json_has_character_columns_and_fix_edits() {
         let text = "; Ä\nÄ Z=AC17";
         let mut line_diagnostic = s101(1, 3, 9);
-        line_diagnostic.diagnostic = line_diagnostic
-            .diagnostic
-            .with_fix(Fix::replace("write `Z=AC(17)`", Span::new(3, 9), "Z=AC(17)"));
+        line_diagnostic.diagnostic = line_diagnostic.diagnostic.with_fix(Fix::replace(
+            "write `Z=AC(17)`",
+            Span::new(3, 9),
+            "Z=AC(17)",
+        ));
         let lines = ProgramLines::new(text);
-        let value = serde_json::to_value(JsonDiagnostic::new("P.MPF", &lines, &line_diagnostic)).unwrap();
+        let value =
+            serde_json::to_value(JsonDiagnostic::new("P.MPF", &lines, &line_diagnostic)).unwrap();
         assert_eq!(
             value,
             serde_json::json!({

@@ -62,10 +62,11 @@ pub fn decode_source(bytes: &[u8]) -> SourceText {
 /// character, so nothing is lost, and the checker reports the control character where it stands.
 pub fn decode_windows_1252(bytes: &[u8]) -> String {
     const HIGH_CONTROL_RANGE: [char; 32] = [
-        '\u{20AC}', '\u{0081}', '\u{201A}', '\u{0192}', '\u{201E}', '\u{2026}', '\u{2020}', '\u{2021}',
-        '\u{02C6}', '\u{2030}', '\u{0160}', '\u{2039}', '\u{0152}', '\u{008D}', '\u{017D}', '\u{008F}',
-        '\u{0090}', '\u{2018}', '\u{2019}', '\u{201C}', '\u{201D}', '\u{2022}', '\u{2013}', '\u{2014}',
-        '\u{02DC}', '\u{2122}', '\u{0161}', '\u{203A}', '\u{0153}', '\u{009D}', '\u{017E}', '\u{0178}',
+        '\u{20AC}', '\u{0081}', '\u{201A}', '\u{0192}', '\u{201E}', '\u{2026}', '\u{2020}',
+        '\u{2021}', '\u{02C6}', '\u{2030}', '\u{0160}', '\u{2039}', '\u{0152}', '\u{008D}',
+        '\u{017D}', '\u{008F}', '\u{0090}', '\u{2018}', '\u{2019}', '\u{201C}', '\u{201D}',
+        '\u{2022}', '\u{2013}', '\u{2014}', '\u{02DC}', '\u{2122}', '\u{0161}', '\u{203A}',
+        '\u{0153}', '\u{009D}', '\u{017E}', '\u{0178}',
     ];
     bytes
         .iter()
@@ -86,7 +87,8 @@ pub fn read_source_file(path: &Path) -> io::Result<SourceText> {
     // The size is checked again while reading because the metadata can lie: a file may grow in the
     // meantime, and devices or pipes report a size of 0.
     let mut bytes = Vec::with_capacity(usize::try_from(size).unwrap_or(0));
-    file.take(MAX_SOURCE_FILE_SIZE + 1).read_to_end(&mut bytes)?;
+    file.take(MAX_SOURCE_FILE_SIZE + 1)
+        .read_to_end(&mut bytes)?;
     if bytes.len() as u64 > MAX_SOURCE_FILE_SIZE {
         return Err(too_large_error(bytes.len() as u64));
     }

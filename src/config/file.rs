@@ -117,7 +117,8 @@ pub fn load_config_file(path: &Path) -> Result<MachineConfig, ConfigError> {
         Ok(text) => parse_config_text(text, path),
         Err(utf8_error) => {
             // TOML is UTF-8 by definition; pointing at the first bad byte saves the user a hex editor.
-            let valid_text = std::str::from_utf8(&bytes[..utf8_error.valid_up_to()]).unwrap_or_default();
+            let valid_text =
+                std::str::from_utf8(&bytes[..utf8_error.valid_up_to()]).unwrap_or_default();
             Err(ConfigError {
                 path: path.to_path_buf(),
                 position: Some(position_of(valid_text, valid_text.len())),
@@ -265,8 +266,16 @@ impl RawConfig {
         if let Some(reset_gcodes) = &machine.reset_gcodes {
             let mut names = Vec::with_capacity(reset_gcodes.len());
             for (index, name) in reset_gcodes.iter().enumerate() {
-                let key_path = [key("machine"), key("reset_gcodes"), KeySegment::Index(index)];
-                if name.is_empty() || !name.chars().all(|character| character.is_ascii_alphanumeric()) {
+                let key_path = [
+                    key("machine"),
+                    key("reset_gcodes"),
+                    KeySegment::Index(index),
+                ];
+                if name.is_empty()
+                    || !name
+                        .chars()
+                        .all(|character| character.is_ascii_alphanumeric())
+                {
                     return Err(invalid(
                         &key_path,
                         format!("{name:?} is not a G function name (expected letters and digits, like \"G18\" or \"DIAMON\")"),
@@ -325,7 +334,10 @@ impl RawConfig {
             config.r_parameter_count = u32::try_from(value).map_err(|_| {
                 invalid(
                     &[key("machine"), key("r_parameters")],
-                    format!("must be a whole number from 0 to {}, found {value}", u32::MAX),
+                    format!(
+                        "must be a whole number from 0 to {}, found {value}",
+                        u32::MAX
+                    ),
                 )
             })?;
         }
@@ -396,7 +408,9 @@ fn convert_axes(raw_axes: &BTreeMap<String, String>) -> Result<Vec<Axis>, Invali
         let key_path = [key("axes"), key(name)];
         let mut characters = name.chars();
         let is_valid_name = name.len() <= 8
-            && characters.next().is_some_and(|first| first.is_ascii_alphabetic())
+            && characters
+                .next()
+                .is_some_and(|first| first.is_ascii_alphabetic())
             && characters.all(|character| character.is_ascii_alphanumeric() || character == '_');
         if !is_valid_name {
             return Err(invalid(
@@ -494,10 +508,13 @@ impl KeyLocator {
     /// The deepest key whose name or value covers `offset`. The span of a `[table]` header covers only
     /// the header, not the keys below it, so every entry is searched rather than walking down by spans.
     fn path_at(&self, offset: usize) -> Option<Vec<KeySegment>> {
-        let covers = |span: &Range<usize>| span.start <= offset && offset < span.end.max(span.start + 1);
+        let covers =
+            |span: &Range<usize>| span.start <= offset && offset < span.end.max(span.start + 1);
         self.entries
             .iter()
-            .filter(|entry| entry.key_span.as_ref().is_some_and(covers) || covers(&entry.value_span))
+            .filter(|entry| {
+                entry.key_span.as_ref().is_some_and(covers) || covers(&entry.value_span)
+            })
             .max_by_key(|entry| entry.key_path.len())
             .map(|entry| entry.key_path.clone())
     }
@@ -588,7 +605,10 @@ mod tests {
     #[test]
     fn empty_file_gives_mill_defaults() {
         assert_eq!(parse("").unwrap(), MachineConfig::mill());
-        assert_eq!(parse("# only a comment\n\n").unwrap(), MachineConfig::mill());
+        assert_eq!(
+            parse("# only a comment\n\n").unwrap(),
+            MachineConfig::mill()
+        );
         assert_eq!(parse("[machine]\n").unwrap(), MachineConfig::mill());
     }
 
@@ -646,7 +666,10 @@ extensions = ["MPF", "spf", "nc"]
         );
         assert_eq!(config.severity_of(Code::NameReadAsCall), Severity::Error);
         assert_eq!(config.severity_of(Code::BlockTooLong), Severity::Hint);
-        assert_eq!(config.severity_of(Code::UnexpectedCharacter), Severity::Error);
+        assert_eq!(
+            config.severity_of(Code::UnexpectedCharacter),
+            Severity::Error
+        );
         assert_eq!(config.extensions, vec!["mpf", "spf", "nc"]);
     }
 
@@ -661,7 +684,10 @@ extensions = ["MPF", "spf", "nc"]
     fn inline_and_dotted_tables_are_accepted() {
         let config = parse("machine = { kind = \"turn\" }\naxes.X = \"linear\"\n").unwrap();
         assert_eq!(config.kind, MachineKind::Turn);
-        assert_eq!(axis_list(&config), vec![("X".to_string(), AxisKind::Linear)]);
+        assert_eq!(
+            axis_list(&config),
+            vec![("X".to_string(), AxisKind::Linear)]
+        );
     }
 
     #[test]
@@ -674,7 +700,10 @@ extensions = ["MPF", "spf", "nc"]
         assert!(message.contains("invalid TOML"), "{message}");
 
         let error = error_of("[machine]\nkind = \"mill\"\n[machine]\n");
-        assert!(error.to_string().starts_with("sinumerik.toml:3:"), "{error}");
+        assert!(
+            error.to_string().starts_with("sinumerik.toml:3:"),
+            "{error}"
+        );
     }
 
     #[test]
@@ -728,8 +757,14 @@ extensions = ["MPF", "spf", "nc"]
     fn bad_axis_names_are_named() {
         for name in ["1X", "ABCDEFGHI", "X-1", "\"\"", "_X", "\"Ä\""] {
             let error = error_of(&format!("[axes]\n{name} = \"linear\"\n"));
-            assert!(error.key.as_deref().unwrap().starts_with("axes."), "{error}");
-            assert!(error.message.contains("is not an axis name"), "{name}: {error}");
+            assert!(
+                error.key.as_deref().unwrap().starts_with("axes."),
+                "{error}"
+            );
+            assert!(
+                error.message.contains("is not an axis name"),
+                "{name}: {error}"
+            );
         }
         let error = error_of("[axes]\nx = \"linear\"\nX = \"rotary\"\n");
         assert!(error.message.contains("listed twice"), "{error}");
@@ -743,22 +778,61 @@ extensions = ["MPF", "spf", "nc"]
         let cases = [
             ("kind = \"lathe\"", "machine.kind", "mill or turn"),
             ("units = \"cm\"", "machine.units", "mm or inch"),
-            ("reset_gcodes = [\"G18\", \"G 17\"]", "machine.reset_gcodes[1]", "not a G function name"),
-            ("reset_gcodes = [\"\"]", "machine.reset_gcodes[0]", "not a G function name"),
-            ("circle_error_const = 0", "machine.circle_error_const", "greater than 0"),
-            ("circle_error_const = nan", "machine.circle_error_const", "greater than 0"),
-            ("circle_error_factor = -0.1", "machine.circle_error_factor", "0 or greater"),
-            ("max_skip_level = 10", "machine.max_skip_level", "from 0 to 9"),
-            ("max_skip_level = -1", "machine.max_skip_level", "from 0 to 9"),
-            ("max_block_length = 0", "machine.max_block_length", "greater than 0"),
+            (
+                "reset_gcodes = [\"G18\", \"G 17\"]",
+                "machine.reset_gcodes[1]",
+                "not a G function name",
+            ),
+            (
+                "reset_gcodes = [\"\"]",
+                "machine.reset_gcodes[0]",
+                "not a G function name",
+            ),
+            (
+                "circle_error_const = 0",
+                "machine.circle_error_const",
+                "greater than 0",
+            ),
+            (
+                "circle_error_const = nan",
+                "machine.circle_error_const",
+                "greater than 0",
+            ),
+            (
+                "circle_error_factor = -0.1",
+                "machine.circle_error_factor",
+                "0 or greater",
+            ),
+            (
+                "max_skip_level = 10",
+                "machine.max_skip_level",
+                "from 0 to 9",
+            ),
+            (
+                "max_skip_level = -1",
+                "machine.max_skip_level",
+                "from 0 to 9",
+            ),
+            (
+                "max_block_length = 0",
+                "machine.max_block_length",
+                "greater than 0",
+            ),
             ("r_parameters = -5", "machine.r_parameters", "from 0 to"),
         ];
         for (line, expected_key, expected_text) in cases {
             let error = error_of(&format!("[machine]\n{line}\n"));
             assert_eq!(error.key.as_deref(), Some(expected_key), "{line}: {error}");
-            assert_eq!(error.position.map(|(line, _)| line), Some(2), "{line}: {error}");
+            assert_eq!(
+                error.position.map(|(line, _)| line),
+                Some(2),
+                "{line}: {error}"
+            );
             let message = error.to_string();
-            assert!(message.contains(&format!("key `{expected_key}`")), "{message}");
+            assert!(
+                message.contains(&format!("key `{expected_key}`")),
+                "{message}"
+            );
             assert!(message.contains(expected_text), "{message}");
         }
     }
@@ -771,7 +845,10 @@ extensions = ["MPF", "spf", "nc"]
 
         let error = error_of("[diagnostics]\nS101 = \"off\"\n");
         assert_eq!(error.key.as_deref(), Some("diagnostics.S101"));
-        assert!(error.message.contains("unknown severity \"off\""), "{error}");
+        assert!(
+            error.message.contains("unknown severity \"off\""),
+            "{error}"
+        );
 
         let error = error_of("[diagnostics]\nS101 = \"error\"\ns101 = \"hint\"\n");
         assert!(error.message.contains("listed twice"), "{error}");
@@ -796,7 +873,8 @@ extensions = ["MPF", "spf", "nc"]
 
     #[test]
     fn files_are_discovered_upwards_and_loaded() {
-        let root = std::env::temp_dir().join(format!("sinumerik-config-test-{}", std::process::id()));
+        let root =
+            std::env::temp_dir().join(format!("sinumerik-config-test-{}", std::process::id()));
         let nested = root.join("a").join("b");
         std::fs::create_dir_all(&nested).unwrap();
         let config_path = root.join(CONFIG_FILE_NAME);
@@ -813,7 +891,12 @@ extensions = ["MPF", "spf", "nc"]
 
         let missing = load_config_file(&root.join("missing.toml")).unwrap_err();
         assert!(std::error::Error::source(&missing).is_some());
-        assert!(missing.to_string().contains("missing.toml: cannot read the file"), "{missing}");
+        assert!(
+            missing
+                .to_string()
+                .contains("missing.toml: cannot read the file"),
+            "{missing}"
+        );
 
         std::fs::remove_dir_all(&root).unwrap();
     }

@@ -93,6 +93,8 @@ pub enum ExprKind {
     Unary(UnaryOp, ExprId),
     Binary(BinaryOp, ExprId, ExprId),
     Parenthesized(ExprId),
+    /// `(a, b, c)`: a list of values, as some instructions take (`OSCTRL[Z]=(1,2)`).
+    List(Vec<ExprId>),
     /// Something that could not be parsed; a diagnostic has been reported.
     Error,
 }
@@ -217,6 +219,8 @@ pub enum NamedAddress {
     RotationInPlane,
     /// `POS[X]`, `POSA[X]`, `SPOS`, `SPOSA`: positioning axes and spindles, which take all modifiers.
     Positioning,
+    /// `AX[name]=`: an axis given indirectly; takes the position modifiers of an axis.
+    IndirectAxis,
     /// Any other known address (`LIMS`, `FA[X]`, `OVR`, `CHF`, `RND`, ...): no position modifiers.
     Other,
 }
@@ -230,6 +234,7 @@ impl AddressKind {
                 | AddressKind::Interpolation
                 | AddressKind::Named(NamedAddress::PolarAngle)
                 | AddressKind::Named(NamedAddress::Positioning)
+                | AddressKind::Named(NamedAddress::IndirectAxis)
         )
     }
 }

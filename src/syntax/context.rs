@@ -9,6 +9,8 @@ pub struct SyntaxContext {
     axes: Vec<(String, AxisKind)>,
     pub max_skip_level: u8,
     pub max_block_length: usize,
+    /// Upper-case names of macros (`DEFINE name AS ...`) known for the program being parsed.
+    macros: std::collections::HashSet<String>,
 }
 
 impl SyntaxContext {
@@ -21,6 +23,7 @@ impl SyntaxContext {
                 .collect(),
             max_skip_level: config.max_skip_level,
             max_block_length: config.max_block_length,
+            macros: Default::default(),
         }
     }
 
@@ -30,6 +33,16 @@ impl SyntaxContext {
             .iter()
             .find(|(axis, _)| axis.eq_ignore_ascii_case(name))
             .map(|(_, kind)| *kind)
+    }
+
+    /// Adds a macro name (any case).
+    pub fn add_macro(&mut self, name: &str) {
+        self.macros.insert(name.to_ascii_uppercase());
+    }
+
+    /// Whether `upper` (an upper-case name) is a known macro.
+    pub fn is_macro(&self, upper: &str) -> bool {
+        !self.macros.is_empty() && self.macros.contains(upper)
     }
 
     /// The configured axes for messages, e.g. "axes X, Y, Z".

@@ -85,7 +85,8 @@ pub fn named_address(upper: &str) -> Option<NamedAddress> {
         "TURN" => NamedAddress::Turns,
         "RPL" => NamedAddress::RotationInPlane,
         "POS" | "POSA" | "SPOS" | "SPOSA" | "MOV" => NamedAddress::Positioning,
-        "AX" | "FA" | "FL" | "OVR" | "OVRA" | "OVRRAP" | "LIMS" | "CHF" | "CHR" | "RND" | "RNDM"
+        "AX" => NamedAddress::IndirectAxis,
+        "FA" | "FL" | "OVR" | "OVRA" | "OVRRAP" | "LIMS" | "CHF" | "CHR" | "RND" | "RNDM"
         | "ADIS" | "ADISPOS" | "SF" | "DISR" | "DISCL" | "DISRP" | "FAD" | "ACC" | "ACCLIMA"
         | "VELOLIMA" | "JERKLIMA" | "FB" | "FRC" | "FRCM" | "FGREF" | "FMA" | "FPR" | "FPRAON"
         | "FPRAOF" | "FXS" | "FXST" | "FXSW" | "FOC" | "FOCON" | "FOCOF" | "SCC" | "SVC" | "ID"

@@ -20,7 +20,10 @@ use crate::diagnostics::LineDiagnostic;
 /// All syntax diagnostics of a program text, lines 0-based, severities after the configuration's
 /// overrides, sorted by line and column.
 pub fn check_program(text: &str, config: &MachineConfig) -> Vec<LineDiagnostic> {
-    let context = SyntaxContext::new(config);
+    let mut context = SyntaxContext::new(config);
+    for name in macro_names(text) {
+        context.add_macro(name);
+    }
     let mut parser = LineParser::new();
     let mut block = Block::default();
     let mut line_diagnostics = Vec::new();
@@ -40,4 +43,28 @@ pub fn check_program(text: &str, config: &MachineConfig) -> Vec<LineDiagnostic> 
     }
     out.sort_by_key(|item| (item.line, item.diagnostic.span.start));
     out
+}
+
+/// The names defined with `DEFINE name AS ...` anywhere in `text`: a macro may be used before the line
+/// that defines it is reached when it comes from a definition file, so they are collected up front.
+pub fn macro_names(text: &str) -> impl Iterator<Item = &str> {
+    lines::line_ranges(text).filter_map(move |(start, end)| {
+        let line = &text[start..end];
+        let upper_position = find_ascii_case_insensitive(line, "DEFINE")?;
+        let rest = line[upper_position + "DEFINE".len()..].trim_start();
+        let name_end = rest
+            .find(|character: char| !(character.is_ascii_alphanumeric() || character == '_'))
+            .unwrap_or(rest.len());
+        let name = &rest[..name_end];
+        let after = rest[name_end..].trim_start();
+        (!name.is_empty() && after.len() >= 2 && after.as_bytes()[..2].eq_ignore_ascii_case(b"AS")).then_some(name)
+    })
+}
+
+fn find_ascii_case_insensitive(haystack: &str, needle: &str) -> Option<usize> {
+    let comment_start = haystack.find(';').unwrap_or(haystack.len());
+    haystack[..comment_start]
+        .as_bytes()
+        .windows(needle.len())
+        .position(|window| window.eq_ignore_ascii_case(needle.as_bytes()))
 }

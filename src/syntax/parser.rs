@@ -48,6 +48,8 @@ impl LineParser {
             unclosed_reported: false,
             modifier_depth: 0,
             precedence_reported: false,
+            condition_depth: 0,
+            group_depth: 0,
         };
         parser.parse_block();
     }
@@ -74,6 +76,10 @@ struct Parser<'a> {
     /// Greater than zero while parsing the value inside `AC(..)` and friends.
     modifier_depth: u32,
     precedence_reported: bool,
+    /// Greater than zero while parsing the condition of IF, WHILE, UNTIL or a synchronized action.
+    condition_depth: u32,
+    /// Greater than zero inside parentheses or brackets of an expression.
+    group_depth: u32,
 }
 
 /// Letters that name axes when the machine configuration has such an axis (reference §1.7).
@@ -535,6 +541,15 @@ impl<'a> Parser<'a> {
                         let number = number.min(u64::from(u32::MAX)) as u32;
                         match GCode::from_number(number) {
                             Some(code) => self.block.statements.push(Statement::GCode { code, span }),
+                            None if self.context.is_macro(&format!("G{number}")) => {
+                                // A machine may define `G300` as a macro (DEFINE G300 AS ...).
+                                self.block.statements.push(Statement::Call {
+                                    kind: CallKind::Named,
+                                    name: Some(span),
+                                    args: Vec::new(),
+                                    span,
+                                });
+                            }
                             None => {
                                 self.report(
                                     Code::UnknownGCode,
@@ -709,11 +724,18 @@ impl<'a> Parser<'a> {
             span,
         };
         if kind == AddressKind::SubprogramNumber {
+            // `L140(2)` calls the subprogram L140 with parameters.
+            let args = if self.is_at(Token::LeftParen) && self.adjacent(self.position) {
+                self.parse_argument_list().0
+            } else {
+                Vec::new()
+            };
+            let call_span = span.to(Span::new(self.previous_end(), self.previous_end()));
             self.block.statements.push(Statement::Call {
                 kind: CallKind::Named,
                 name: Some(span),
-                args: Vec::new(),
-                span,
+                args,
+                span: call_span,
             });
         } else {
             self.block.statements.push(Statement::Address(word));
@@ -1013,6 +1035,7 @@ impl<'a> Parser<'a> {
         let modifier = Modifier::from_name(&name).unwrap_or(Modifier::Ac);
         let open = self.advance();
         self.modifier_depth += 1;
+        self.group_depth += 1;
         let mut values: Vec<Option<ExprId>> = Vec::new();
         let mut close = None;
         loop {
@@ -1040,6 +1063,7 @@ impl<'a> Parser<'a> {
             }
         }
         self.modifier_depth -= 1;
+        self.group_depth -= 1;
         let end = close.map(|span| span.end()).unwrap_or(self.previous_end());
         let whole = Span::new(modifier_span.start(), end);
         let modifier_text = self.text(modifier_span).to_string();
@@ -1315,7 +1339,9 @@ impl<'a> Parser<'a> {
             });
             return;
         }
-        self.check_name_read_as_call(&upper, name_span, has_arguments);
+        if !self.context.is_macro(&upper) {
+            self.check_name_read_as_call(&upper, name_span, has_arguments);
+        }
         // The span may have grown (a `.5` that belongs to `CR5.5`), so read the position again.
         if self.position < self.lexemes.len() && self.current_span() == name_span {
             self.advance();
@@ -1387,24 +1413,6 @@ impl<'a> Parser<'a> {
                 fix,
             );
         }
-    }
-
-    fn find_matching_paren(&self, open_index: usize) -> Option<usize> {
-        let mut depth = 0usize;
-        for index in open_index..self.lexemes.len() {
-            match self.token_at(index) {
-                Some(Token::LeftParen) => depth += 1,
-                Some(Token::RightParen) => {
-                    depth = depth.saturating_sub(1);
-                    if depth == 0 {
-                        return Some(index);
-                    }
-                }
-                Some(Token::Comment) => return None,
-                _ => {}
-            }
-        }
-        None
     }
 
     // ----- keyword statements -------------------------------------------------------------------
@@ -1516,7 +1524,10 @@ impl<'a> Parser<'a> {
                 let condition = if self.at_end() {
                     None
                 } else {
-                    Some(self.parse_expression())
+                    self.condition_depth += 1;
+                    let condition = self.parse_expression();
+                    self.condition_depth -= 1;
+                    Some(condition)
                 };
                 let span = keyword_span.to(Span::new(self.previous_end(), self.previous_end()));
                 self.block
@@ -1670,7 +1681,10 @@ impl<'a> Parser<'a> {
             return None;
         }
         self.precedence_reported = false;
-        Some(self.parse_expression())
+        self.condition_depth += 1;
+        let condition = self.parse_expression();
+        self.condition_depth -= 1;
+        Some(condition)
     }
 
     fn jump_keyword_here(&self) -> Option<StatementKeyword> {
@@ -1953,11 +1967,42 @@ impl<'a> Parser<'a> {
 
     fn parse_binary(&mut self, minimum_power: u8) -> ExprId {
         let mut left = self.parse_unary();
-        while let Some((op, power)) = self.binary_operator_here() {
+        loop {
+            let (op, power, width) = match self.binary_operator_here() {
+                Some((op, power)) => (op, power, 1),
+                None => match self.condition_comparison_here() {
+                    Some((op, width)) => (op, 1, width),
+                    None => {
+                        if self.skip_unknown_infix_name(&mut left) {
+                            continue;
+                        }
+                        break;
+                    }
+                },
+            };
             if power < minimum_power {
                 break;
             }
-            self.advance();
+            if width != 1 || self.is_at(Token::Assign) {
+                let start = self.current_span();
+                let end = self.span_at(self.position + width - 1);
+                let written = self.line[start.start()..end.end()].to_string();
+                let proper = match op {
+                    BinaryOp::LessEqual => "<=",
+                    BinaryOp::GreaterEqual => ">=",
+                    _ => "==",
+                };
+                let fix = Fix::replace(format!("Write `{proper}`"), start.to(end), proper);
+                self.report_with_fix(
+                    Code::ComparisonSpelling,
+                    start.to(end),
+                    format!("a comparison is written `{proper}`, not `{written}`"),
+                    fix,
+                );
+            }
+            for _ in 0..width {
+                self.advance();
+            }
             let right = self.parse_binary(power + 1);
             let span = self.expr_span(left).to(self.expr_span(right));
             if op.is_comparison() {
@@ -1968,19 +2013,66 @@ impl<'a> Parser<'a> {
         left
     }
 
-    fn check_comparison_operands(&mut self, left: ExprId, right: ExprId, span: Span) {
+    /// Inside a condition, `=` is read as `==`, and `=<`, `=>` as `<=`, `>=` (seen in real programs;
+    /// reported with S174). Returns the operator and how many tokens it spans.
+    fn condition_comparison_here(&self) -> Option<(BinaryOp, usize)> {
+        if self.condition_depth == 0 || !self.is_at(Token::Assign) {
+            return None;
+        }
+        let next_adjacent = self.adjacent(self.position + 1);
+        match self.peek_nth(1) {
+            Some(Token::Less) if next_adjacent => Some((BinaryOp::LessEqual, 2)),
+            Some(Token::Greater) if next_adjacent => Some((BinaryOp::GreaterEqual, 2)),
+            _ => Some((BinaryOp::Equal, 1)),
+        }
+    }
+
+    /// Inside brackets, a plain name right after an operand (`(A _DEC2)`) can only be a macro that
+    /// expands to operators. Its meaning is unknown, so the value becomes an error node and parsing goes
+    /// on; a known macro is accepted silently.
+    fn skip_unknown_infix_name(&mut self, left: &mut ExprId) -> bool {
+        if self.group_depth == 0 || !self.is_at(Token::Identifier) {
+            return false;
+        }
+        let span = self.current_span();
+        let upper = self.upper_name(span);
+        if keywords::statement_keyword(&upper).is_some() || keywords::is_modifier_name(&upper) {
+            return false;
+        }
+        self.advance();
+        if !self.context.is_macro(&upper) {
+            self.report(
+                Code::UnknownNameBetweenOperands,
+                span,
+                format!("`{upper}` stands between operands; if it is a macro (DEFINE ... AS), its definition is not known here, so this value is not checked"),
+            );
+        }
+        let whole = self.expr_span(*left).to(span);
+        *left = self.push_expr(ExprKind::Error, whole);
+        true
+    }
+
+    /// `R1==1 AND R2==2` parses as `(R1 == (1 AND R2)) == 2` because comparisons bind weakest: a
+    /// comparison chained onto a comparison whose right side is a bare AND/OR is almost surely meant as
+    /// two bracketed comparisons. `MASK B_AND 4 <> 0` is read as intended and is left alone.
+    fn check_comparison_operands(&mut self, left: ExprId, _right: ExprId, span: Span) {
         if self.precedence_reported {
             return;
         }
-        let is_bare_logical = |id: ExprId, exprs: &[Expr]| {
-            matches!(exprs[id.0 as usize].kind, ExprKind::Binary(op, _, _) if op.is_logical())
+        let exprs = &self.block.exprs;
+        let chained_on_logical = match exprs[left.0 as usize].kind {
+            ExprKind::Binary(op, _, inner_right) if op.is_comparison() => matches!(
+                exprs[inner_right.0 as usize].kind,
+                ExprKind::Binary(inner_op, _, _) if inner_op.is_logical()
+            ),
+            _ => false,
         };
-        if is_bare_logical(left, &self.block.exprs) || is_bare_logical(right, &self.block.exprs) {
+        if chained_on_logical {
             self.precedence_reported = true;
             self.report(
                 Code::ComparisonPrecedence,
                 span,
-                "comparisons bind weaker than AND/OR: this reads as a comparison with an AND/OR expression; bracket each comparison, e.g. `(R1==1) AND (R2==2)`",
+                "comparisons bind weaker than AND/OR, so this reads as `a == (b AND c) == d`; bracket each comparison, e.g. `(R1==1) AND (R2==2)`",
             );
         }
     }
@@ -2112,7 +2204,18 @@ impl<'a> Parser<'a> {
             }
             Some(Token::LeftParen) => {
                 let open = self.advance();
+                self.group_depth += 1;
                 let inner = self.parse_expression();
+                self.group_depth -= 1;
+                if self.is_at(Token::Comma) {
+                    let mut items = vec![inner];
+                    while self.is_at(Token::Comma) {
+                        self.advance();
+                        items.push(self.parse_expression());
+                    }
+                    let close = self.expect_close(Token::RightParen, open);
+                    return self.push_expr(ExprKind::List(items), open.to(close));
+                }
                 let close = self.expect_close(Token::RightParen, open);
                 self.push_expr(ExprKind::Parenthesized(inner), open.to(close))
             }
@@ -2223,6 +2326,13 @@ impl<'a> Parser<'a> {
 
     /// `(a, , b)` at the current position; empty arguments are `None`.
     fn parse_argument_list(&mut self) -> (Vec<Option<ExprId>>, Span) {
+        self.group_depth += 1;
+        let result = self.parse_argument_list_inner();
+        self.group_depth -= 1;
+        result
+    }
+
+    fn parse_argument_list_inner(&mut self) -> (Vec<Option<ExprId>>, Span) {
         let open = self.advance();
         let mut args = Vec::new();
         if self.is_at(Token::RightParen) {
@@ -2259,6 +2369,7 @@ impl<'a> Parser<'a> {
     /// `[a, b]` at the current position.
     fn parse_index_list(&mut self) -> (Vec<ExprId>, Span) {
         let open = self.advance();
+        self.group_depth += 1;
         let mut indexes = Vec::new();
         while !self.at_end() && !self.is_at(Token::RightBracket) {
             indexes.push(self.parse_expression());
@@ -2268,6 +2379,7 @@ impl<'a> Parser<'a> {
                 break;
             }
         }
+        self.group_depth -= 1;
         let close = self.expect_close(Token::RightBracket, open);
         (indexes, open.to(close))
     }
@@ -2380,6 +2492,7 @@ impl<'a> Parser<'a> {
                         | AddressKind::Named(NamedAddress::PolarAngle)
                         | AddressKind::Named(NamedAddress::PolarRadius)
                         | AddressKind::Named(NamedAddress::RotationInPlane)
+                        | AddressKind::Named(NamedAddress::IndirectAxis)
                 ),
                 _ => false,
             };
