@@ -1,1 +1,71 @@
-fn main() {}
+//! Lexing + parsing throughput on large generated programs, printed as MB/s per style.
+//!
+//! Run with `cargo bench --bench parse_throughput`. The programs come from
+//! `../shared/bench/gen_program.py` (1,000,000 lines each unless `BENCH_LINES` says otherwise); when the
+//! generator is absent the benchmark says so and exits without figures.
+
+use sinumerik_lsp::config::MachineConfig;
+use sinumerik_lsp::syntax::{lines, Block, LineParser, SyntaxContext};
+use std::path::Path;
+use std::process::Command;
+use std::time::Instant;
+
+fn generate(style: &str, line_count: usize) -> Option<String> {
+    let generator = Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/bench/gen_program.py");
+    if !generator.exists() {
+        return None;
+    }
+    let output = Command::new("python3")
+        .arg(&generator)
+        .args(["--lines", &line_count.to_string(), "--style", style])
+        .output()
+        .ok()?;
+    if !output.status.success() {
+        return None;
+    }
+    String::from_utf8(output.stdout).ok()
+}
+
+/// Parses every line once; returns the number of diagnostics so the work cannot be optimised away.
+fn parse_all(text: &str, context: &SyntaxContext) -> usize {
+    let mut parser = LineParser::new();
+    let mut block = Block::default();
+    let mut diagnostics = Vec::new();
+    let mut total = 0;
+    for (start, end) in lines::line_ranges(text) {
+        parser.parse(&text[start..end], context, &mut block, &mut diagnostics);
+        total += diagnostics.len() + block.statements.len();
+    }
+    total
+}
+
+fn main() {
+    let line_count: usize = std::env::var("BENCH_LINES")
+        .ok()
+        .and_then(|value| value.parse().ok())
+        .unwrap_or(1_000_000);
+    let mill = SyntaxContext::new(&MachineConfig::mill());
+    let turn = SyntaxContext::new(&MachineConfig::turn());
+    println!("lex + parse throughput, one core, {line_count} lines per program");
+    for style in ["cam3d", "inc", "turning", "mixed"] {
+        let Some(text) = generate(style, line_count) else {
+            println!("{style}: skipped (../shared/bench/gen_program.py or python3 not available)");
+            continue;
+        };
+        let context = if style == "turning" { &turn } else { &mill };
+        // One warm-up pass, then the best of five timed passes.
+        let mut checksum = parse_all(&text, context);
+        let mut best = f64::INFINITY;
+        for _ in 0..5 {
+            let started = Instant::now();
+            checksum = checksum.wrapping_add(parse_all(&text, context));
+            best = best.min(started.elapsed().as_secs_f64());
+        }
+        let megabytes = text.len() as f64 / 1e6;
+        println!(
+            "{style:>8}: {megabytes:7.1} MB in {:7.1} ms = {:6.0} MB/s (checksum {checksum})",
+            best * 1e3,
+            megabytes / best
+        );
+    }
+}

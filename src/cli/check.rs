@@ -86,11 +86,8 @@ pub(crate) fn run_check(
         };
         n_checked_files += 1;
 
-        let mut line_diagnostics = crate::syntax::check_program(&source.text, &config);
-        // The checker's order is not a promise; people read the output from top to bottom.
-        line_diagnostics.sort_by_key(|line_diagnostic| {
-            (line_diagnostic.line, line_diagnostic.diagnostic.span.start)
-        });
+        // The checker returns the diagnostics sorted by line and column, the order people read in.
+        let line_diagnostics = crate::syntax::check_program(&source.text, &config);
         let lines = ProgramLines::new(&source.text);
         let path_text = path.display().to_string();
         for line_diagnostic in &line_diagnostics {
@@ -163,8 +160,8 @@ fn walk_folder(
 
     for entry in entries {
         let path = entry.path();
-        // `DirEntry::file_type` does not follow symbolic links, so a linked folder is seen as a link and
-        // not walked: links can form cycles and can lead far outside the folder the user named.
+        // `DirEntry::file_type` does not follow symbolic links, so a linked folder is seen as a
+        // link and not walked: links can form cycles and lead far outside the folder the user named.
         let Ok(file_type) = entry.file_type() else {
             continue;
         };
@@ -182,7 +179,7 @@ fn walk_folder(
         let Some(extension) = path.extension().and_then(|extension| extension.to_str()) else {
             continue;
         };
-        // A folder whose configuration file is broken has already been reported; its files are skipped.
+        // A broken configuration file has already been reported; the files it governs are skipped.
         let Some(config) = configs.for_folder(folder, problems) else {
             continue;
         };
@@ -205,23 +202,16 @@ struct ConfigCache {
 
 impl ConfigCache {
     fn new(fixed: Option<MachineConfig>, extensions_override: Option<Vec<String>>) -> ConfigCache {
-        let mut cache = ConfigCache {
-            fixed: None,
-            default: Rc::new(MachineConfig::default()),
+        ConfigCache {
+            fixed: fixed.map(|config| Rc::new(with_extensions(config, &extensions_override))),
+            default: Rc::new(with_extensions(
+                MachineConfig::default(),
+                &extensions_override,
+            )),
             extensions_override,
             config_file_by_folder: HashMap::new(),
             config_by_file: HashMap::new(),
-        };
-        cache.default = Rc::new(cache.with_override((*cache.default).clone()));
-        cache.fixed = fixed.map(|config| Rc::new(cache.with_override(config)));
-        cache
-    }
-
-    fn with_override(&self, mut config: MachineConfig) -> MachineConfig {
-        if let Some(extensions) = &self.extensions_override {
-            config.extensions = extensions.clone();
         }
-        config
     }
 
     /// The configuration for programs in `folder`, or `None` when its configuration file is broken.
@@ -245,7 +235,7 @@ impl ConfigCache {
             return cached.clone();
         }
         let loaded = match load_config_file(&config_file) {
-            Ok(config) => Some(Rc::new(self.with_override(config))),
+            Ok(config) => Some(Rc::new(with_extensions(config, &self.extensions_override))),
             Err(config_error) => {
                 problems.report(config_error);
                 None
@@ -254,6 +244,17 @@ impl ConfigCache {
         self.config_by_file.insert(config_file, loaded.clone());
         loaded
     }
+}
+
+/// `--extensions` wins over the extensions of every configuration file.
+fn with_extensions(
+    mut config: MachineConfig,
+    extensions_override: &Option<Vec<String>>,
+) -> MachineConfig {
+    if let Some(extensions) = extensions_override {
+        config.extensions = extensions.clone();
+    }
+    config
 }
 
 /// Reports problems with the inputs on stderr and remembers that there was one, for the exit code.

@@ -39,19 +39,20 @@ pub const EXIT_TROUBLE: u8 = 2;
 
 const USAGE: &str = "\
 Usage:
-  sinumerik-lsp check [OPTIONS] PATH...   check SINUMERIK programs (files, or folders searched recursively)
-  sinumerik-lsp --help                    show this help
-  sinumerik-lsp --version                 show the version
+  sinumerik-lsp check [OPTIONS] PATH...  check programs (folders recursively)
+  sinumerik-lsp --help                   show this help
+  sinumerik-lsp --version                show the version
 
 Options of check:
   --format human|json   output format (default: human)
-  --config FILE         use this configuration for every program instead of the nearest sinumerik.toml
-  --extensions LIST     extensions read from folders, comma-separated (default: mpf,spf)
+  --config FILE         use this configuration for every program
+  --extensions LIST     extensions read from folders (default: mpf,spf)
 
-Each program uses the sinumerik.toml found in its folder or the nearest folder above it, else the
-defaults of a metric milling machine.
+Without --config, each program uses the sinumerik.toml in its folder or the
+nearest folder above it, else the defaults of a metric milling machine.
 
-Exit codes: 0 no errors found, 1 errors found, 2 usage, file or configuration problem.
+Exit codes: 0 no errors found, 1 errors found, 2 usage, file or configuration
+problem.
 ";
 
 /// Runs the program with the process's arguments (the first is the program name) on the real stdout

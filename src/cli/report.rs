@@ -3,6 +3,7 @@
 
 use crate::diagnostics::{LineDiagnostic, Severity, Span};
 use serde::Serialize;
+use std::cell::Cell;
 use std::io::{self, Write};
 
 /// The gutter of the human format is at least this wide, so short files line up like long ones.
@@ -59,10 +60,17 @@ fn plural(count: usize, noun: &str) -> String {
     }
 }
 
-/// One program file's text and line index, to find the text of the line a diagnostic points into.
+/// One program file's text and line index: the text of the line a diagnostic points into, and the
+/// conversion of its byte spans to character columns.
 pub(crate) struct ProgramLines<'text> {
     text: &'text str,
     line_ranges: Vec<(usize, usize)>,
+    /// In an ASCII text, and most programs are, a byte offset already is a character index.
+    is_ascii: bool,
+    /// The last conversion: line, byte offset and character index. Diagnostics come sorted, so a
+    /// long line with many of them is counted once from left to right instead of once per diagnostic
+    /// (a 20 MB line of binary garbage took seconds before).
+    last_conversion: Cell<(usize, usize, usize)>,
 }
 
 impl<'text> ProgramLines<'text> {
@@ -70,6 +78,8 @@ impl<'text> ProgramLines<'text> {
         ProgramLines {
             text,
             line_ranges: crate::syntax::lines::line_ranges(text).collect(),
+            is_ascii: text.is_ascii(),
+            last_conversion: Cell::new((usize::MAX, 0, 0)),
         }
     }
 
@@ -80,27 +90,28 @@ impl<'text> ProgramLines<'text> {
             None => "",
         }
     }
-}
 
-/// The 0-based character index of a byte offset in a line. An offset past the end counts as the end;
-/// an offset inside a multi-byte character counts as that character, so a bad span never panics.
-pub(crate) fn char_index(line: &str, byte_offset: usize) -> usize {
-    let byte_offset = floor_char_boundary(line, byte_offset);
-    if line.is_ascii() {
-        byte_offset
-    } else {
-        line[..byte_offset].chars().count()
+    /// The 1-based columns, in characters (Unicode scalar values), of a span in a line: the first
+    /// character and the one after the last (end exclusive); an empty span gives the same column
+    /// twice. Offsets past the end count as the end and offsets inside a multi-byte character widen
+    /// the span to that character, so a bad span never panics.
+    pub fn columns(&self, line_idx: usize, span: Span) -> (usize, usize) {
+        let line = self.line(line_idx);
+        let start = floor_char_boundary(line, span.start());
+        let end = ceil_char_boundary(line, span.end().max(span.start()));
+        if self.is_ascii {
+            return (start + 1, end + 1);
+        }
+        let (cached_line_idx, cached_offset, cached_index) = self.last_conversion.get();
+        let start_index = if cached_line_idx == line_idx && cached_offset <= start {
+            cached_index + line[cached_offset..start].chars().count()
+        } else {
+            line[..start].chars().count()
+        };
+        self.last_conversion.set((line_idx, start, start_index));
+        let end_index = start_index + line[start..end].chars().count();
+        (start_index + 1, end_index + 1)
     }
-}
-
-/// The 1-based columns, in characters, of a span in a line: the first character and the one after
-/// the last (end exclusive). An empty span gives the same column twice.
-pub(crate) fn char_columns(line: &str, span: Span) -> (usize, usize) {
-    let start = floor_char_boundary(line, span.start());
-    let end = ceil_char_boundary(line, span.end().max(span.start()));
-    let start_column = char_index(line, start) + 1;
-    let end_column = start_column + line[start..end].chars().count();
-    (start_column, end_column)
 }
 
 fn floor_char_boundary(line: &str, byte_offset: usize) -> usize {
@@ -136,7 +147,7 @@ pub(crate) fn write_human(
     let diagnostic = &line_diagnostic.diagnostic;
     let line = lines.line(line_diagnostic.line);
     let line_number = line_diagnostic.line + 1;
-    let (start_column, _) = char_columns(line, diagnostic.span);
+    let (start_column, _) = lines.columns(line_diagnostic.line, diagnostic.span);
     // Messages quote the program's text and paths can hold anything, so both are made safe too.
     writeln!(
         out,
@@ -264,9 +275,8 @@ impl<'a> JsonDiagnostic<'a> {
         line_diagnostic: &'a LineDiagnostic,
     ) -> JsonDiagnostic<'a> {
         let diagnostic = &line_diagnostic.diagnostic;
-        let line = lines.line(line_diagnostic.line);
         let line_number = line_diagnostic.line + 1;
-        let (column, end_column) = char_columns(line, diagnostic.span);
+        let (column, end_column) = lines.columns(line_diagnostic.line, diagnostic.span);
         let fix = diagnostic.fix.as_ref().map(|fix| JsonFix {
             title: &fix.title,
             edits: fix
@@ -274,7 +284,7 @@ impl<'a> JsonDiagnostic<'a> {
                 .iter()
                 .map(|edit| {
                     // Edits are relative to the diagnostic's line, like its span.
-                    let (column, end_column) = char_columns(line, edit.span);
+                    let (column, end_column) = lines.columns(line_diagnostic.line, edit.span);
                     JsonEdit {
                         line: line_number,
                         column,
@@ -321,27 +331,58 @@ mod tests {
         }
     }
 
+    fn columns(line: &str, span: Span) -> (usize, usize) {
+        ProgramLines::new(line).columns(0, span)
+    }
+
     #[test]
     fn byte_offsets_become_character_columns() {
-        assert_eq!(char_index("N10 X1", 4), 4);
-        assert_eq!(char_index("; Ä X", 5), 4);
-        assert_eq!(char_index("; Ä X", 3), 2);
-        assert_eq!(char_index("; Ä X", 99), 5);
-        assert_eq!(char_index("", 3), 0);
-        assert_eq!(char_columns("ÄÖ Z=AC17", Span::new(5, 12)), (4, 10));
-        assert_eq!(char_columns("ab", Span::new(2, 2)), (3, 3));
+        assert_eq!(columns("N10 X1", Span::new(4, 6)), (5, 7));
+        assert_eq!(columns("; Ä X", Span::new(5, 6)), (5, 6));
+        assert_eq!(columns("; Ä X", Span::new(2, 4)), (3, 4));
+        assert_eq!(columns("; Ä X", Span::new(99, 99)), (6, 6));
+        assert_eq!(columns("", Span::new(3, 4)), (1, 1));
+        assert_eq!(columns("ÄÖ Z=AC17", Span::new(5, 12)), (4, 10));
+        assert_eq!(columns("ab", Span::new(2, 2)), (3, 3));
         // An emoji is one character (one Unicode scalar value) although it is four bytes.
-        assert_eq!(char_columns("😀X1", Span::new(4, 6)), (2, 4));
+        assert_eq!(columns("😀X1", Span::new(4, 6)), (2, 4));
     }
 
     #[test]
     fn bad_spans_are_clamped_not_panicking() {
         // Offsets inside a character widen to the whole character; reversed or out-of-range spans
         // collapse to something printable.
-        assert_eq!(char_columns("ÄB", Span::new(1, 1)), (1, 2));
-        assert_eq!(char_columns("ÄB", Span::new(1, 3)), (1, 3));
-        assert_eq!(char_columns("AB", Span::new(5, 1)), (3, 3));
-        assert_eq!(char_columns("AB", Span { start: 2, end: 0 }), (3, 3));
+        assert_eq!(columns("ÄB", Span::new(1, 1)), (1, 2));
+        assert_eq!(columns("ÄB", Span::new(1, 3)), (1, 3));
+        assert_eq!(columns("AB", Span::new(5, 1)), (3, 3));
+        assert_eq!(columns("AB", Span { start: 2, end: 0 }), (3, 3));
+    }
+
+    #[test]
+    fn remembered_conversions_give_the_same_columns() {
+        let text = "; Ä\nÄÖ X1 Ü Y2 é Z3 😀 A4\nB5 Ä";
+        let lines = ProgramLines::new(text);
+        // Forwards, backwards, and across lines, against a fresh conversion each time.
+        let spans = [
+            (1, 0, 2),
+            (1, 5, 7),
+            (1, 10, 12),
+            (1, 5, 6),
+            (2, 0, 2),
+            (1, 16, 18),
+            (1, 2, 4),
+            (0, 2, 4),
+        ];
+        for (line_idx, start, end) in spans {
+            let span = Span::new(start, end);
+            let fresh = ProgramLines::new(lines.line(line_idx)).columns(0, span);
+            assert_eq!(
+                lines.columns(line_idx, span),
+                fresh,
+                "line {line_idx} {span:?}"
+            );
+        }
+        assert_eq!(lines.columns(1, Span::new(5, 7)), (4, 6));
     }
 
     #[test]

@@ -161,7 +161,7 @@ pub fn parse_config_text(text: &str, path: &Path) -> Result<MachineConfig, Confi
         }
     })?;
     raw_config.into_machine_config().map_err(|invalid| {
-        let span = locator.span_of(&invalid.key_path);
+        let span = locator.span_of(&invalid.key_path, invalid.is_about_key);
         ConfigError {
             path: path.to_path_buf(),
             position: span.map(|span| position_of(text, span.start)),
@@ -219,12 +219,23 @@ enum KeySegment {
 struct InvalidValue {
     key_path: Vec<KeySegment>,
     message: String,
+    /// Whether the key itself is wrong (an unknown code, a bad axis name) rather than its value, which
+    /// decides where the position in the message points.
+    is_about_key: bool,
 }
 
 fn invalid(key_path: &[KeySegment], message: String) -> InvalidValue {
     InvalidValue {
         key_path: key_path.to_vec(),
         message,
+        is_about_key: false,
+    }
+}
+
+fn invalid_key(key_path: &[KeySegment], message: String) -> InvalidValue {
+    InvalidValue {
+        is_about_key: true,
+        ..invalid(key_path, message)
     }
 }
 
@@ -349,7 +360,7 @@ impl RawConfig {
         for (code_text, severity_text) in &self.diagnostics {
             let key_path = [key("diagnostics"), key(code_text)];
             let code = Code::parse(code_text).ok_or_else(|| {
-                invalid(
+                invalid_key(
                     &key_path,
                     format!("unknown diagnostic code {code_text:?} (codes look like \"S101\")"),
                 )
@@ -361,7 +372,7 @@ impl RawConfig {
                 )
             })?;
             if config.severity_overrides.insert(code, severity).is_some() {
-                return Err(invalid(
+                return Err(invalid_key(
                     &key_path,
                     format!("code {code} is listed twice (codes are not case-sensitive)"),
                 ));
@@ -413,7 +424,7 @@ fn convert_axes(raw_axes: &BTreeMap<String, String>) -> Result<Vec<Axis>, Invali
                 .is_some_and(|first| first.is_ascii_alphabetic())
             && characters.all(|character| character.is_ascii_alphanumeric() || character == '_');
         if !is_valid_name {
-            return Err(invalid(
+            return Err(invalid_key(
                 &key_path,
                 format!("{name:?} is not an axis name (1 to 8 letters, digits or underscores, starting with a letter)"),
             ));
@@ -432,7 +443,7 @@ fn convert_axes(raw_axes: &BTreeMap<String, String>) -> Result<Vec<Axis>, Invali
         };
         let name = name.to_ascii_uppercase();
         if axes.iter().any(|axis| axis.name == name) {
-            return Err(invalid(
+            return Err(invalid_key(
                 &key_path,
                 format!("axis {name} is listed twice (axis names are not case-sensitive)"),
             ));
@@ -519,12 +530,16 @@ impl KeyLocator {
             .map(|entry| entry.key_path.clone())
     }
 
-    /// Where the value of a key starts (for a `[table]`, its header).
-    fn span_of(&self, key_path: &[KeySegment]) -> Option<Range<usize>> {
-        self.entries
+    /// Where a key's name or value is (the value of a `[table]` is its header).
+    fn span_of(&self, key_path: &[KeySegment], is_about_key: bool) -> Option<Range<usize>> {
+        let entry = self
+            .entries
             .iter()
-            .find(|entry| entry.key_path == key_path)
-            .map(|entry| entry.value_span.clone())
+            .find(|entry| entry.key_path == key_path)?;
+        match &entry.key_span {
+            Some(key_span) if is_about_key => Some(key_span.clone()),
+            _ => Some(entry.value_span.clone()),
+        }
     }
 }
 
@@ -768,6 +783,7 @@ extensions = ["MPF", "spf", "nc"]
         }
         let error = error_of("[axes]\nx = \"linear\"\nX = \"rotary\"\n");
         assert!(error.message.contains("listed twice"), "{error}");
+        assert_eq!(error.position.map(|(_, column)| column), Some(1));
         let error = error_of("[axes]\n");
         assert_eq!(error.key.as_deref(), Some("axes"));
         assert_eq!(error.position, Some((1, 1)));
@@ -841,6 +857,7 @@ extensions = ["MPF", "spf", "nc"]
     fn bad_diagnostics_are_named() {
         let error = error_of("[diagnostics]\nS999 = \"error\"\n");
         assert_eq!(error.key.as_deref(), Some("diagnostics.S999"));
+        assert_eq!(error.position, Some((2, 1)));
         assert!(error.message.contains("unknown diagnostic code"), "{error}");
 
         let error = error_of("[diagnostics]\nS101 = \"off\"\n");

@@ -3,7 +3,9 @@
 
 mod file;
 
-pub use file::{discover_config_file, load_config_file, parse_config_text, ConfigError, CONFIG_FILE_NAME};
+pub use file::{
+    discover_config_file, load_config_file, parse_config_text, ConfigError, CONFIG_FILE_NAME,
+};
 
 use crate::diagnostics::{Code, Severity};
 use std::collections::BTreeMap;

@@ -82,9 +82,13 @@ pub enum ExprKind {
     RParameterIndexed(ExprId),
     /// A name: variable, parameter, axis (`X`, `X1`, `SP1`), constant (`TRUE`). `indexes` holds the
     /// `[...]` arguments when present.
-    Name { indexes: Vec<ExprId> },
+    Name {
+        indexes: Vec<ExprId>,
+    },
     /// A system variable such as `$P_GG[13]`.
-    SystemVariable { indexes: Vec<ExprId> },
+    SystemVariable {
+        indexes: Vec<ExprId>,
+    },
     /// A function call `NAME(args)`; empty arguments (`F(1,,3)`) are `None`.
     Call {
         name: Span,
@@ -278,10 +282,16 @@ pub enum AssignTarget {
     RParameter(u32),
     RParameterIndexed(ExprId),
     /// A user variable or PROC parameter, possibly indexed.
-    Variable { indexes: Vec<ExprId> },
-    SystemVariable { indexes: Vec<ExprId> },
+    Variable {
+        indexes: Vec<ExprId>,
+    },
+    SystemVariable {
+        indexes: Vec<ExprId>,
+    },
     /// `G[8]=2`: select a G function of a group by number.
-    GGroup { group: ExprId },
+    GGroup {
+        group: ExprId,
+    },
 }
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -297,7 +307,10 @@ pub enum JumpKind {
 #[derive(Debug, Clone, PartialEq)]
 pub enum JumpTarget {
     Label(Span),
-    BlockNumber { value: u64, span: Span },
+    BlockNumber {
+        value: u64,
+        span: Span,
+    },
     /// A string expression evaluated at run time.
     Computed(ExprId),
     /// Nothing was written after the jump keyword (only `GOTOS` may stand alone).
@@ -335,9 +348,15 @@ pub enum StructureKeyword {
 #[derive(Debug, Clone, PartialEq)]
 pub enum Statement {
     /// A G function written by number (`G1`) or by name (`DIAMON`, `TRANS`).
-    GCode { code: GCode, span: Span },
+    GCode {
+        code: GCode,
+        span: Span,
+    },
     /// A G number that does not exist; reported with S144.
-    UnknownGCode { number: u32, span: Span },
+    UnknownGCode {
+        number: u32,
+        span: Span,
+    },
     Address(AddressWord),
     Assignment {
         target: AssignTarget,
@@ -366,9 +385,16 @@ pub enum Statement {
         span: Span,
     },
     /// `DEF ...` declarations with the spans of the declared names.
-    Definition { names: Vec<Span>, span: Span },
+    Definition {
+        names: Vec<Span>,
+        span: Span,
+    },
     /// `DEFINE name AS body`.
-    MacroDefinition { name: Option<Span>, body: Span, span: Span },
+    MacroDefinition {
+        name: Option<Span>,
+        body: Span,
+        span: Span,
+    },
     /// `PROC name(params) attributes`, with the spans of the parameter names.
     ProcedureHeader {
         name: Option<Span>,
@@ -376,9 +402,14 @@ pub enum Statement {
         span: Span,
     },
     /// `EXTERN name(types)`.
-    ExternDeclaration { name: Option<Span>, span: Span },
+    ExternDeclaration {
+        name: Option<Span>,
+        span: Span,
+    },
     /// `RET`.
-    Return { span: Span },
+    Return {
+        span: Span,
+    },
     /// A predefined instruction without G group (`STOPRE`, `TRAORI`, `MSG(..)`, `WRITE(..)`, ...),
     /// with its arguments when it has parentheses.
     Instruction {
@@ -388,7 +419,10 @@ pub enum Statement {
     },
     /// `WHEN`/`WHENEVER`/`FROM`/`EVERY` condition `DO`: the statements after it in the block are
     /// actions of the main run.
-    SyncCondition { condition: Option<ExprId>, span: Span },
+    SyncCondition {
+        condition: Option<ExprId>,
+        span: Span,
+    },
 }
 
 impl Statement {

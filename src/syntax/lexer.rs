@@ -165,7 +165,10 @@ mod tests {
         assert_eq!(tokens(".5"), vec![(Some(Token::Number), ".5")]);
         assert_eq!(tokens("1.5EX-3"), vec![(Some(Token::Number), "1.5EX-3")]);
         assert_eq!(tokens("'H1F'"), vec![(Some(Token::HexNumber), "'H1F'")]);
-        assert_eq!(tokens("'B101'"), vec![(Some(Token::BinaryNumber), "'B101'")]);
+        assert_eq!(
+            tokens("'B101'"),
+            vec![(Some(Token::BinaryNumber), "'B101'")]
+        );
         assert_eq!(tokens("'HXZ'"), vec![(Some(Token::BadQuoted), "'HXZ'")]);
         assert_eq!(tokens("1.2.3"), vec![(Some(Token::BadNumber), "1.2.3")]);
     }

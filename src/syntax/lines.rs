@@ -28,11 +28,12 @@ impl Iterator for LineRanges<'_> {
         match rest.iter().position(|&byte| byte == b'\n' || byte == b'\r') {
             Some(offset) => {
                 let end = start + offset;
-                let terminator_len = if rest[offset] == b'\r' && rest.get(offset + 1) == Some(&b'\n') {
-                    2
-                } else {
-                    1
-                };
+                let terminator_len =
+                    if rest[offset] == b'\r' && rest.get(offset + 1) == Some(&b'\n') {
+                        2
+                    } else {
+                        1
+                    };
                 self.position = end + terminator_len;
                 Some((start, end))
             }
@@ -49,7 +50,9 @@ mod tests {
     use super::*;
 
     fn lines(text: &str) -> Vec<&str> {
-        line_ranges(text).map(|(start, end)| &text[start..end]).collect()
+        line_ranges(text)
+            .map(|(start, end)| &text[start..end])
+            .collect()
     }
 
     #[test]

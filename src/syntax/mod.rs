@@ -30,7 +30,12 @@ pub fn check_program(text: &str, config: &MachineConfig) -> Vec<LineDiagnostic> 
     let mut structure = structure::StructureChecker::default();
     let mut out = Vec::new();
     for (line_index, (start, end)) in lines::line_ranges(text).enumerate() {
-        parser.parse(&text[start..end], &context, &mut block, &mut line_diagnostics);
+        parser.parse(
+            &text[start..end],
+            &context,
+            &mut block,
+            &mut line_diagnostics,
+        );
         out.extend(line_diagnostics.drain(..).map(|diagnostic| LineDiagnostic {
             line: line_index,
             diagnostic,
@@ -57,14 +62,14 @@ pub fn macro_names(text: &str) -> impl Iterator<Item = &str> {
             .unwrap_or(rest.len());
         let name = &rest[..name_end];
         let after = rest[name_end..].trim_start();
-        (!name.is_empty() && after.len() >= 2 && after.as_bytes()[..2].eq_ignore_ascii_case(b"AS")).then_some(name)
+        (!name.is_empty() && after.len() >= 2 && after.as_bytes()[..2].eq_ignore_ascii_case(b"AS"))
+            .then_some(name)
     })
 }
 
 fn find_ascii_case_insensitive(haystack: &str, needle: &str) -> Option<usize> {
     let comment_start = haystack.find(';').unwrap_or(haystack.len());
-    haystack[..comment_start]
-        .as_bytes()
+    haystack.as_bytes()[..comment_start]
         .windows(needle.len())
         .position(|window| window.eq_ignore_ascii_case(needle.as_bytes()))
 }

@@ -250,7 +250,9 @@ impl<'a> Parser<'a> {
             let number_span = self.advance();
             span = slash.to(number_span);
             match self.integer_at(self.position - 1) {
-                Some(value) if value <= u64::from(self.context.max_skip_level) => level = value as u8,
+                Some(value) if value <= u64::from(self.context.max_skip_level) => {
+                    level = value as u8
+                }
                 _ => {
                     self.report(
                         Code::InvalidSkipLevel,
@@ -410,7 +412,11 @@ impl<'a> Parser<'a> {
             }
             Token::RightBracket => {
                 let span = self.advance();
-                self.report(Code::UnbalancedBrackets, span, "this `]` has no matching `[`");
+                self.report(
+                    Code::UnbalancedBrackets,
+                    span,
+                    "this `]` has no matching `[`",
+                );
             }
             _ => {
                 let span = self.advance();
@@ -441,7 +447,9 @@ impl<'a> Parser<'a> {
     fn report_bad_number(&mut self, span: Span) {
         let text = self.text(span).to_string();
         let message = if text.starts_with('\'') {
-            format!("`{text}` is not a valid literal: write hexadecimal as 'H1F' and binary as 'B101'")
+            format!(
+                "`{text}` is not a valid literal: write hexadecimal as 'H1F' and binary as 'B101'"
+            )
         } else {
             format!("`{text}` is not a valid number")
         };
@@ -540,7 +548,9 @@ impl<'a> Parser<'a> {
                     Some(number) => {
                         let number = number.min(u64::from(u32::MAX)) as u32;
                         match GCode::from_number(number) {
-                            Some(code) => self.block.statements.push(Statement::GCode { code, span }),
+                            Some(code) => {
+                                self.block.statements.push(Statement::GCode { code, span })
+                            }
                             None if self.context.is_macro(&format!("G{number}")) => {
                                 // A machine may define `G300` as a macro (DEFINE G300 AS ...).
                                 self.block.statements.push(Statement::Call {
@@ -606,7 +616,9 @@ impl<'a> Parser<'a> {
             let number_span = self.advance();
             target_span = letter_span.to(number_span);
             match self.integer_at(self.position - 1) {
-                Some(number) => target = AssignTarget::RParameter(number.min(u64::from(u32::MAX)) as u32),
+                Some(number) => {
+                    target = AssignTarget::RParameter(number.min(u64::from(u32::MAX)) as u32)
+                }
                 None => {
                     let text = self.text(target_span).to_string();
                     self.report(
@@ -742,7 +754,13 @@ impl<'a> Parser<'a> {
         }
     }
 
-    fn check_axis_configured(&mut self, letter: u8, extension: Option<u32>, name_span: Span, span: Span) {
+    fn check_axis_configured(
+        &mut self,
+        letter: u8,
+        extension: Option<u32>,
+        name_span: Span,
+        span: Span,
+    ) {
         let name = match extension {
             Some(number) => format!("{}{}", letter as char, number),
             None => (letter as char).to_string(),
@@ -761,7 +779,12 @@ impl<'a> Parser<'a> {
     }
 
     /// The value of an address word: a constant (`X10`, `X-5.5`), or `=` and an expression or modifier.
-    fn parse_word_value(&mut self, kind: AddressKind, name_span: Span, has_extension: bool) -> Value {
+    fn parse_word_value(
+        &mut self,
+        kind: AddressKind,
+        name_span: Span,
+        has_extension: bool,
+    ) -> Value {
         if self.is_at(Token::Assign) {
             return self.parse_value_after_equals(kind, name_span);
         }
@@ -803,7 +826,11 @@ impl<'a> Parser<'a> {
             Some(Token::String) if kind == AddressKind::Tool => {
                 // `T"DRILL"` without `=` is not valid, but the intent is clear.
                 let span = self.advance();
-                let fix = Fix::replace("Write `T=\"...\"`", Span::new(span.start(), span.start()), "=");
+                let fix = Fix::replace(
+                    "Write `T=\"...\"`",
+                    Span::new(span.start(), span.start()),
+                    "=",
+                );
                 self.report_with_fix(
                     Code::ValueNeedsEquals,
                     span,
@@ -845,7 +872,9 @@ impl<'a> Parser<'a> {
                 self.report_with_fix(
                     Code::ModifierWithoutEquals,
                     Span::new(name_span.start(), end),
-                    format!("a position modifier needs `=` after the address: `{address}={written}`"),
+                    format!(
+                        "a position modifier needs `=` after the address: `{address}={written}`"
+                    ),
                     fix,
                 );
                 value
@@ -890,7 +919,9 @@ impl<'a> Parser<'a> {
                 self.report(
                     Code::MissingValue,
                     name_span,
-                    format!("address `{text}` has no value (`{text}0` cannot be shortened to `{text}`)"),
+                    format!(
+                        "address `{text}` has no value (`{text}0` cannot be shortened to `{text}`)"
+                    ),
                 );
                 Value {
                     modifier: None,
@@ -926,7 +957,8 @@ impl<'a> Parser<'a> {
                 }
                 self.report_modifier_without_parentheses(name_token_span, &name);
                 return Value {
-                    modifier: Modifier::from_name(&name).map(|modifier| (modifier, name_token_span)),
+                    modifier: Modifier::from_name(&name)
+                        .map(|modifier| (modifier, name_token_span)),
                     expr: None,
                     has_equals: true,
                 };
@@ -1069,11 +1101,7 @@ impl<'a> Parser<'a> {
         let modifier_text = self.text(modifier_span).to_string();
         let value_count = values.iter().filter(|value| value.is_some()).count();
         if close.is_none() {
-            let fix = Fix::replace(
-                "Close the parenthesis",
-                Span::new(end, end),
-                ")",
-            );
+            let fix = Fix::replace("Close the parenthesis", Span::new(end, end), ")");
             self.report_with_fix(
                 Code::ModifierUnclosed,
                 whole,
@@ -1090,7 +1118,10 @@ impl<'a> Parser<'a> {
             self.report(
                 Code::ModifierTooManyValues,
                 whole,
-                format!("{modifier_text} takes exactly one value, not {}", values.len()),
+                format!(
+                    "{modifier_text} takes exactly one value, not {}",
+                    values.len()
+                ),
             );
         }
         let _ = open;
@@ -1158,7 +1189,10 @@ impl<'a> Parser<'a> {
                 _ => {}
             }
         }
-        if modifier.needs_transverse_axis() && axis_kind.is_some() && axis_kind != Some(AxisKind::Transverse) {
+        if modifier.needs_transverse_axis()
+            && axis_kind.is_some()
+            && axis_kind != Some(AxisKind::Transverse)
+        {
             self.report(
                 Code::ModifierNeedsTransverseAxis,
                 whole,
@@ -1367,7 +1401,12 @@ impl<'a> Parser<'a> {
         let first = upper.as_bytes().first().copied().unwrap_or(b'?');
         let rest = &upper[1.min(upper.len())..];
         let single_axis = |letter: u8| -> bool {
-            is_axis_letter(letter) && (self.context.axis_kind(&(letter as char).to_string()).is_some() || matches!(letter, b'X' | b'Y' | b'Z'))
+            is_axis_letter(letter)
+                && (self
+                    .context
+                    .axis_kind(&(letter as char).to_string())
+                    .is_some()
+                    || matches!(letter, b'X' | b'Y' | b'Z'))
         };
         let mut suggestion: Option<(Span, String)> = None;
         if has_arguments && single_axis(first) && keywords::is_modifier_name(rest) {
@@ -1449,7 +1488,10 @@ impl<'a> Parser<'a> {
                     self.report(
                         Code::ExpectedExpression,
                         keyword_span,
-                        format!("`{}` needs the name of the program to call", self.text(keyword_span)),
+                        format!(
+                            "`{}` needs the name of the program to call",
+                            self.text(keyword_span)
+                        ),
                     );
                     None
                 } else {
@@ -1457,7 +1499,8 @@ impl<'a> Parser<'a> {
                     Some(self.expr_span(expr))
                 };
                 // `CALL "PART" BLOCK START TO END` names a section of the program; keep it as written.
-                if self.is_at(Token::Identifier) && self.upper_name(self.current_span()) == "BLOCK" {
+                if self.is_at(Token::Identifier) && self.upper_name(self.current_span()) == "BLOCK"
+                {
                     while !self.at_end() {
                         self.advance();
                     }
@@ -1507,7 +1550,9 @@ impl<'a> Parser<'a> {
                     if self.is_at(Token::LeftParen) {
                         args = self.parse_argument_list().0;
                     }
-                } else if self.letter_at(self.position) == Some(b'L') && self.peek_nth(1) == Some(Token::Number) {
+                } else if self.letter_at(self.position) == Some(b'L')
+                    && self.peek_nth(1) == Some(Token::Number)
+                {
                     let letter = self.advance();
                     let number = self.advance();
                     name = Some(letter.to(number));
@@ -1618,7 +1663,9 @@ impl<'a> Parser<'a> {
                 }
                 // Pairs of `value GOTOF label`, then `DEFAULT GOTOF label`.
                 while !self.at_end() {
-                    if self.is_at(Token::Identifier) && self.upper_name(self.current_span()) == "DEFAULT" {
+                    if self.is_at(Token::Identifier)
+                        && self.upper_name(self.current_span()) == "DEFAULT"
+                    {
                         self.advance();
                     } else {
                         self.parse_expression();
@@ -1711,10 +1758,15 @@ impl<'a> Parser<'a> {
             }
             JumpTarget::None
         } else if self.is_at(Token::Identifier)
-            && !matches!(self.peek_nth(1), Some(Token::LeftBracket) | Some(Token::LeftParen))
+            && !matches!(
+                self.peek_nth(1),
+                Some(Token::LeftBracket) | Some(Token::LeftParen)
+            )
         {
             JumpTarget::Label(self.advance())
-        } else if self.letter_at(self.position) == Some(b'N') && self.peek_nth(1) == Some(Token::Number) {
+        } else if self.letter_at(self.position) == Some(b'N')
+            && self.peek_nth(1) == Some(Token::Number)
+        {
             let letter = self.advance();
             let number = self.advance();
             let value = self.integer_at(self.position - 1).unwrap_or(0);
@@ -1735,7 +1787,9 @@ impl<'a> Parser<'a> {
             JumpTarget::Computed(self.parse_expression())
         };
         let span = keyword_span.to(Span::new(self.previous_end(), self.previous_end()));
-        self.block.statements.push(Statement::Jump { kind, target, span });
+        self.block
+            .statements
+            .push(Statement::Jump { kind, target, span });
     }
 
     /// `DEF [NCK|CHAN ...] TYPE name[=init], name2[dims]` — read leniently: only the declared names and
@@ -1861,7 +1915,10 @@ impl<'a> Parser<'a> {
                         let upper = self.upper_name(span);
                         let followed_by_end = matches!(
                             self.peek(),
-                            Some(Token::Comma) | Some(Token::RightParen) | Some(Token::LeftBracket) | Some(Token::Assign)
+                            Some(Token::Comma)
+                                | Some(Token::RightParen)
+                                | Some(Token::LeftBracket)
+                                | Some(Token::Assign)
                         ) || self.at_end();
                         if followed_by_end && !is_type_name(&upper) && upper != "VAR" {
                             parameters.push(span);
@@ -1960,7 +2017,9 @@ impl<'a> Parser<'a> {
             BinaryOp::BitXor => 7,
             BinaryOp::BitAnd => 8,
             BinaryOp::Add | BinaryOp::Subtract => 9,
-            BinaryOp::Multiply | BinaryOp::Divide | BinaryOp::IntegerDivide | BinaryOp::Modulo => 10,
+            BinaryOp::Multiply | BinaryOp::Divide | BinaryOp::IntegerDivide | BinaryOp::Modulo => {
+                10
+            }
         };
         Some((op, power))
     }
@@ -2256,7 +2315,10 @@ impl<'a> Parser<'a> {
             }
         }
         let mut whole = span;
-        if self.adjacent(self.position) && self.is_at(Token::Number) && self.integer_at(self.position).is_some() {
+        if self.adjacent(self.position)
+            && self.is_at(Token::Number)
+            && self.integer_at(self.position).is_some()
+        {
             whole = span.to(self.advance());
         }
         let mut indexes = Vec::new();
@@ -2285,7 +2347,9 @@ impl<'a> Parser<'a> {
                 let message = if self.modifier_depth > 0 {
                     format!("position modifiers cannot be nested: `{upper}(..)` inside another modifier")
                 } else {
-                    format!("{upper}(..) only stands directly after `=` of an axis or other address")
+                    format!(
+                        "{upper}(..) only stands directly after `=` of an axis or other address"
+                    )
                 };
                 let code = if self.modifier_depth > 0 {
                     Code::ModifierNested
@@ -2397,11 +2461,7 @@ impl<'a> Parser<'a> {
                 (Code::UnbalancedBrackets, "]")
             };
             let end = self.previous_end();
-            let fix = Fix::replace(
-                format!("Insert `{closing}`"),
-                Span::new(end, end),
-                closing,
-            );
+            let fix = Fix::replace(format!("Insert `{closing}`"), Span::new(end, end), closing);
             let found = if self.at_end() {
                 "the end of the block".to_string()
             } else {
@@ -2471,10 +2531,12 @@ impl<'a> Parser<'a> {
     }
 
     fn check_alone_instructions(&mut self, statements: &[Statement]) {
-        let Some((instruction, instruction_span)) = statements.iter().find_map(|statement| match statement {
-            Statement::GCode { code, span } if code.must_stand_alone() => Some((*code, *span)),
-            _ => None,
-        }) else {
+        let Some((instruction, instruction_span)) =
+            statements.iter().find_map(|statement| match statement {
+                Statement::GCode { code, span } if code.must_stand_alone() => Some((*code, *span)),
+                _ => None,
+            })
+        else {
             return;
         };
         let name = instruction.name();
@@ -2528,7 +2590,11 @@ impl<'a> Parser<'a> {
             }
             if let Some((_, first)) = seen.iter().find(|(seen_key, _)| *seen_key == key) {
                 let first_text = self.text(*first).to_string();
-                let alarm = if word.kind == AddressKind::Axis { "16420" } else { "12010" };
+                let alarm = if word.kind == AddressKind::Axis {
+                    "16420"
+                } else {
+                    "12010"
+                };
                 self.report(
                     Code::AddressTwice,
                     word.span,
@@ -2596,7 +2662,12 @@ fn nearest_modifier(name: &str) -> Option<Modifier> {
     Modifier::ALL
         .iter()
         .copied()
-        .filter(|modifier| !matches!(modifier, Modifier::Cac | Modifier::Cic | Modifier::Cdc | Modifier::Cacp | Modifier::Cacn))
+        .filter(|modifier| {
+            !matches!(
+                modifier,
+                Modifier::Cac | Modifier::Cic | Modifier::Cdc | Modifier::Cacp | Modifier::Cacn
+            )
+        })
         .find(|modifier| edit_distance_is_one(name, modifier.as_str()))
 }
 
@@ -2609,7 +2680,11 @@ fn edit_distance_is_one(left: &str, right: &str) -> bool {
     match left.len() as isize - right.len() as isize {
         0 => left.iter().zip(right).filter(|(a, b)| a != b).count() == 1,
         1 | -1 => {
-            let (longer, shorter) = if left.len() > right.len() { (left, right) } else { (right, left) };
+            let (longer, shorter) = if left.len() > right.len() {
+                (left, right)
+            } else {
+                (right, left)
+            };
             (0..longer.len()).any(|skip| {
                 longer[..skip] == shorter[..skip] && longer[skip + 1..] == shorter[skip..]
             })

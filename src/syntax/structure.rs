@@ -152,6 +152,10 @@ impl StructureChecker {
 fn mismatch(line: usize, span: Span, message: String) -> LineDiagnostic {
     LineDiagnostic {
         line,
-        diagnostic: Diagnostic::new(Code::StructureMismatch, span, format!("{message} (alarm 12640)")),
+        diagnostic: Diagnostic::new(
+            Code::StructureMismatch,
+            span,
+            format!("{message} (alarm 12640)"),
+        ),
     }
 }
