@@ -9,13 +9,25 @@ pub struct SyntaxContext {
     axes: Vec<(String, AxisKind)>,
     pub max_skip_level: u8,
     pub max_block_length: usize,
+    /// Axes whose name is one letter, by letter: the common case, looked up without comparing text.
+    single_letter_axes: [Option<AxisKind>; 26],
     /// Upper-case names of macros (`DEFINE name AS ...`) known for the program being parsed.
     macros: std::collections::HashSet<String>,
 }
 
 impl SyntaxContext {
     pub fn new(config: &MachineConfig) -> SyntaxContext {
+        let mut single_letter_axes = [None; 26];
+        for axis in &config.axes {
+            if let [letter] = axis.name.as_bytes() {
+                if letter.is_ascii_alphabetic() {
+                    single_letter_axes[(letter.to_ascii_uppercase() - b'A') as usize] =
+                        Some(axis.kind);
+                }
+            }
+        }
         SyntaxContext {
+            single_letter_axes,
             axes: config
                 .axes
                 .iter()
@@ -27,8 +39,22 @@ impl SyntaxContext {
         }
     }
 
+    /// The kind of a configured one-letter axis.
+    pub fn axis_kind_by_letter(&self, letter: u8) -> Option<AxisKind> {
+        if letter.is_ascii_alphabetic() {
+            self.single_letter_axes[(letter.to_ascii_uppercase() - b'A') as usize]
+        } else {
+            None
+        }
+    }
+
     /// The kind of a configured axis, by name in any case.
     pub fn axis_kind(&self, name: &str) -> Option<AxisKind> {
+        if let [letter] = name.as_bytes() {
+            if letter.is_ascii_alphabetic() {
+                return self.single_letter_axes[(letter.to_ascii_uppercase() - b'A') as usize];
+            }
+        }
         self.axes
             .iter()
             .find(|(axis, _)| axis.eq_ignore_ascii_case(name))

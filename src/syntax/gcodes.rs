@@ -373,6 +373,30 @@ pub static TABLE: &[GCodeInfo] = &[
     n("ORISON", 61, 2, true),
 ];
 
+/// Index of [`TABLE`] by G number and by name, built once.
+struct LookupTables {
+    /// `u16::MAX` where no G function has that number.
+    by_number: Vec<u16>,
+    by_name: std::collections::HashMap<&'static str, u16>,
+}
+
+fn lookup_tables() -> &'static LookupTables {
+    static TABLES: std::sync::OnceLock<LookupTables> = std::sync::OnceLock::new();
+    TABLES.get_or_init(|| {
+        let mut by_number = vec![u16::MAX; 1000];
+        let mut by_name = std::collections::HashMap::new();
+        for (index, info) in TABLE.iter().enumerate() {
+            match info.number {
+                Some(number) => by_number[number as usize] = index as u16,
+                None => {
+                    by_name.insert(info.name, index as u16);
+                }
+            }
+        }
+        LookupTables { by_number, by_name }
+    })
+}
+
 /// Groups whose functions decide the meaning of the axis words of their block.
 pub fn is_syntax_defining_group(group: u8) -> bool {
     matches!(group, 1..=3)
@@ -384,22 +408,19 @@ impl GCode {
         if (505..=599).contains(&number) {
             return Some(GCode::WorkOffset(number as u16));
         }
-        TABLE
-            .iter()
-            .position(|info| info.number.map(u32::from) == Some(number))
-            .map(|index| GCode::Known(index as u16))
+        let index = *lookup_tables().by_number.get(number as usize)?;
+        (index != u16::MAX).then_some(GCode::Known(index))
     }
 
     /// Looks up a G function written by name (`DIAMON`, `TRANS`), case-insensitively. Names of
     /// numbered functions (`G90`) are not found here: those are written with the letter G.
     pub fn from_name(name: &str) -> Option<GCode> {
-        if name.len() > 10 {
-            return None;
-        }
-        TABLE
-            .iter()
-            .position(|info| info.number.is_none() && info.name.eq_ignore_ascii_case(name))
-            .map(|index| GCode::Known(index as u16))
+        let mut buffer = [0u8; 32];
+        let upper = crate::syntax::keywords::uppercase(name, &mut buffer)?;
+        lookup_tables()
+            .by_name
+            .get(upper)
+            .map(|index| GCode::Known(*index))
     }
 
     pub fn group(self) -> u8 {

@@ -25,7 +25,7 @@ impl Iterator for LineRanges<'_> {
         }
         let start = self.position;
         let rest = &self.bytes[start..];
-        match rest.iter().position(|&byte| byte == b'\n' || byte == b'\r') {
+        match memchr::memchr2(b'\n', b'\r', rest) {
             Some(offset) => {
                 let end = start + offset;
                 let terminator_len =

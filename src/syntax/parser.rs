@@ -192,17 +192,25 @@ impl<'a> Parser<'a> {
         if self.token_at(index) != Some(Token::Number) {
             return None;
         }
-        let text = self.text_at(index);
-        if !text.bytes().all(|byte| byte.is_ascii_digit()) {
-            return None;
+        let mut value: u64 = 0;
+        for byte in self.text_at(index).bytes() {
+            if !byte.is_ascii_digit() {
+                return None;
+            }
+            value = value.checked_mul(10)?.checked_add(u64::from(byte - b'0'))?;
         }
-        text.parse().ok()
+        Some(value)
     }
 
     // ----- block layout -------------------------------------------------------------------------
 
     fn parse_block(&mut self) {
-        let character_count = self.line.chars().count();
+        // Characters are never more than bytes, so most lines skip the count.
+        let character_count = if self.line.len() > self.context.max_block_length {
+            self.line.chars().count()
+        } else {
+            0
+        };
         if character_count > self.context.max_block_length {
             self.report(
                 Code::BlockTooLong,
@@ -669,7 +677,7 @@ impl<'a> Parser<'a> {
         });
     }
 
-    fn classify_letter(&self, letter: u8, extension: Option<u32>, name_span: Span) -> AddressKind {
+    fn classify_letter(&self, letter: u8, extension: Option<u32>) -> AddressKind {
         match letter {
             b'F' => AddressKind::Feed,
             b'S' => AddressKind::Spindle,
@@ -680,21 +688,21 @@ impl<'a> Parser<'a> {
             b'L' => AddressKind::SubprogramNumber,
             b'P' => AddressKind::Repetitions,
             b'I' | b'J' | b'K' => AddressKind::Interpolation,
-            _ => {
-                // A, B, C with extension 2 to 5 are orientation components by default (reference §1.7),
-                // unless the machine configures such an axis.
-                if let Some(number) = extension {
-                    let name = format!("{}{}", letter as char, number);
-                    if self.context.axis_kind(&name).is_none()
-                        && matches!(letter, b'A' | b'B' | b'C')
-                        && (2..=5).contains(&number)
-                    {
-                        return AddressKind::Named(NamedAddress::Other);
-                    }
+            b'A' | b'B' | b'C' if matches!(extension, Some(2..=5)) => {
+                // A2..C5 are orientation components by default (reference §1.7), unless the machine
+                // configures such an axis.
+                let mut buffer = [0u8; 12];
+                if self
+                    .context
+                    .axis_kind(axis_name(letter, extension, &mut buffer))
+                    .is_some()
+                {
+                    AddressKind::Axis
+                } else {
+                    AddressKind::Named(NamedAddress::Other)
                 }
-                let _ = name_span;
-                AddressKind::Axis
             }
+            _ => AddressKind::Axis,
         }
     }
 
@@ -722,11 +730,11 @@ impl<'a> Parser<'a> {
             Some(Extension::Number { value, .. }) => Some(*value),
             _ => None,
         };
-        let kind = self.classify_letter(letter, extension_number, name_span);
+        let kind = self.classify_letter(letter, extension_number);
         let value = self.parse_word_value(kind, name_span, extension.is_some());
         let span = name_span.to(Span::new(self.previous_end(), self.previous_end()));
         if kind == AddressKind::Axis {
-            self.check_axis_configured(letter, extension_number, name_span, span);
+            self.check_axis_configured(letter, extension_number, span);
         }
         let word = AddressWord {
             kind,
@@ -754,19 +762,20 @@ impl<'a> Parser<'a> {
         }
     }
 
-    fn check_axis_configured(
-        &mut self,
-        letter: u8,
-        extension: Option<u32>,
-        name_span: Span,
-        span: Span,
-    ) {
-        let name = match extension {
-            Some(number) => format!("{}{}", letter as char, number),
-            None => (letter as char).to_string(),
+    fn check_axis_configured(&mut self, letter: u8, extension: Option<u32>, span: Span) {
+        let configured = match extension {
+            None => self.context.axis_kind_by_letter(letter).is_some(),
+            Some(_) => {
+                let mut buffer = [0u8; 12];
+                self.context
+                    .axis_kind(axis_name(letter, extension, &mut buffer))
+                    .is_some()
+            }
         };
-        if self.context.axis_kind(&name).is_none() {
-            let _ = name_span;
+        if !configured {
+            let mut buffer = [0u8; 12];
+            let name = axis_name(letter, extension, &mut buffer);
+            let name = name.to_string();
             self.report(
                 Code::AxisNotConfigured,
                 span,
@@ -2572,39 +2581,81 @@ impl<'a> Parser<'a> {
     }
 
     fn check_repeated_addresses(&mut self, statements: &[Statement]) {
-        let mut seen: Vec<(String, Span)> = Vec::new();
-        for statement in statements {
+        // Blocks are short, so comparing each word with the earlier ones costs less than hashing; a
+        // hostile block with thousands of words is capped so that it stays linear.
+        const MAX_COMPARED: usize = 64;
+        let considered = &statements[..statements.len().min(MAX_COMPARED)];
+        for (index, statement) in considered.iter().enumerate() {
             let Statement::Address(word) = statement else {
                 continue;
             };
             if matches!(word.kind, AddressKind::MFunction | AddressKind::HFunction) {
                 continue;
             }
-            let mut key = self.text(word.name).to_ascii_uppercase();
-            match &word.extension {
-                Some(Extension::Number { value, .. }) => key.push_str(&value.to_string()),
-                Some(Extension::Index { span, .. }) => {
-                    key.push_str(&self.text(*span).to_ascii_uppercase().replace(' ', ""))
-                }
-                None => {}
-            }
-            if let Some((_, first)) = seen.iter().find(|(seen_key, _)| *seen_key == key) {
-                let first_text = self.text(*first).to_string();
-                let alarm = if word.kind == AddressKind::Axis {
-                    "16420"
-                } else {
-                    "12010"
-                };
-                self.report(
-                    Code::AddressTwice,
-                    word.span,
-                    format!("`{key}` is already programmed in this block (`{first_text}`; alarm {alarm})"),
-                );
+            let Some(first) = considered[..index]
+                .iter()
+                .find_map(|earlier| match earlier {
+                    Statement::Address(earlier) if self.same_address(earlier, word) => {
+                        Some(earlier)
+                    }
+                    _ => None,
+                })
+            else {
+                continue;
+            };
+            let first_text = self.text(first.span).to_string();
+            let key = self.text(word.name).to_ascii_uppercase();
+            let alarm = if word.kind == AddressKind::Axis {
+                "16420"
             } else {
-                seen.push((key, word.span));
-            }
+                "12010"
+            };
+            self.report(
+                Code::AddressTwice,
+                word.span,
+                format!(
+                    "`{key}` is already programmed in this block (`{first_text}`; alarm {alarm})"
+                ),
+            );
         }
     }
+
+    fn same_address(&self, left: &AddressWord, right: &AddressWord) -> bool {
+        if !self
+            .text(left.name)
+            .eq_ignore_ascii_case(self.text(right.name))
+        {
+            return false;
+        }
+        match (&left.extension, &right.extension) {
+            (None, None) => true,
+            (
+                Some(Extension::Number { value: a, .. }),
+                Some(Extension::Number { value: b, .. }),
+            ) => a == b,
+            (Some(Extension::Index { span: a, .. }), Some(Extension::Index { span: b, .. })) => {
+                let compact = |span: Span| self.text(span).bytes().filter(|byte| *byte != b' ');
+                compact(*a)
+                    .map(|byte| byte.to_ascii_uppercase())
+                    .eq(compact(*b).map(|byte| byte.to_ascii_uppercase()))
+            }
+            _ => false,
+        }
+    }
+}
+
+/// Writes an axis name such as `X` or `X1` into `buffer` without allocating.
+fn axis_name(letter: u8, extension: Option<u32>, buffer: &mut [u8; 12]) -> &str {
+    buffer[0] = letter;
+    let mut length = 1;
+    if let Some(number) = extension {
+        let digits = number.to_string();
+        for byte in digits.bytes().take(buffer.len() - 1) {
+            buffer[length] = byte;
+            length += 1;
+        }
+    }
+    std::str::from_utf8(&buffer[..length]).unwrap_or("?")
 }
 
 fn is_type_name(upper: &str) -> bool {
@@ -2616,12 +2667,49 @@ fn is_type_name(upper: &str) -> bool {
 
 /// Parses a number token's text (`10`, `.5`, `1.5EX-3`).
 pub fn parse_number(text: &str) -> Option<f64> {
-    if let Some(position) = text.to_ascii_uppercase().find("EX") {
-        let mantissa: f64 = text[..position].parse().ok()?;
-        let exponent: i32 = text[position + 2..].parse().ok()?;
-        return Some(mantissa * 10f64.powi(exponent));
+    if let Some(value) = parse_simple_decimal(text.as_bytes()) {
+        return Some(value);
     }
-    text.parse().ok()
+    // The exponent is written `EX` (`1.5EX-3`).
+    match text.bytes().position(|byte| byte == b'E' || byte == b'e') {
+        None => text.parse().ok(),
+        Some(position) => {
+            let mantissa: f64 = text[..position].parse().ok()?;
+            let exponent: i32 = text.get(position + 2..)?.parse().ok()?;
+            Some(mantissa * 10f64.powi(exponent))
+        }
+    }
+}
+
+/// Exact fast path for the numbers CAM programs are made of (`123.456`): when the digits form an
+/// integer below 2^53 and at most 22 decimals follow, one IEEE division gives the correctly rounded
+/// value, the same as the standard parser.
+fn parse_simple_decimal(bytes: &[u8]) -> Option<f64> {
+    const POWERS_OF_TEN: [f64; 23] = [
+        1e0, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8, 1e9, 1e10, 1e11, 1e12, 1e13, 1e14, 1e15, 1e16,
+        1e17, 1e18, 1e19, 1e20, 1e21, 1e22,
+    ];
+    if bytes.is_empty() || bytes.len() > 17 {
+        return None;
+    }
+    let mut mantissa: u64 = 0;
+    let mut decimals: Option<usize> = None;
+    for &byte in bytes {
+        match byte {
+            b'0'..=b'9' => {
+                mantissa = mantissa * 10 + u64::from(byte - b'0');
+                if let Some(count) = decimals.as_mut() {
+                    *count += 1;
+                }
+            }
+            b'.' if decimals.is_none() => decimals = Some(0),
+            _ => return None,
+        }
+    }
+    if mantissa >= 1 << 53 {
+        return None;
+    }
+    Some(mantissa as f64 / POWERS_OF_TEN[decimals.unwrap_or(0)])
 }
 
 /// `$R1` is the spelling of R1 inside synchronized actions.
