@@ -9,6 +9,8 @@ use crate::syntax::gcodes::GCode;
 use crate::syntax::keywords::{self, StatementKeyword};
 use crate::syntax::lexer::{lex_line_into, Lexeme, Token};
 
+mod plain_block;
+
 /// Deepest nesting of parentheses, brackets and unary operators the parser follows. Real programs stay
 /// far below; deeper input is reported (S170) and skipped in linear time.
 pub const MAX_EXPRESSION_DEPTH: u32 = 128;
@@ -33,25 +35,42 @@ impl LineParser {
         block: &mut Block,
         diagnostics: &mut Vec<Diagnostic>,
     ) {
+        self.parse_with(line, context, block, diagnostics, true);
+    }
+
+    /// Like [`LineParser::parse`], but never takes the fast path for plain blocks. Exists so that tests
+    /// can prove both paths give the same result.
+    #[doc(hidden)]
+    pub fn parse_without_fast_path(
+        &mut self,
+        line: &str,
+        context: &SyntaxContext,
+        block: &mut Block,
+        diagnostics: &mut Vec<Diagnostic>,
+    ) {
+        self.parse_with(line, context, block, diagnostics, false);
+    }
+
+    fn parse_with(
+        &mut self,
+        line: &str,
+        context: &SyntaxContext,
+        block: &mut Block,
+        diagnostics: &mut Vec<Diagnostic>,
+        allow_fast_path: bool,
+    ) {
         block.clear();
         diagnostics.clear();
+        if allow_fast_path {
+            let mut parser = Parser::new(line, &[], block, diagnostics, context);
+            if parser.parse_plain_block() {
+                return;
+            }
+            block.clear();
+            diagnostics.clear();
+        }
         lex_line_into(line, &mut self.lexemes);
-        let mut parser = Parser {
-            line,
-            lexemes: &self.lexemes,
-            position: 0,
-            block,
-            diagnostics,
-            context,
-            depth: 0,
-            depth_reported: false,
-            unclosed_reported: false,
-            modifier_depth: 0,
-            precedence_reported: false,
-            condition_depth: 0,
-            group_depth: 0,
-        };
-        parser.parse_block();
+        Parser::new(line, &self.lexemes, block, diagnostics, context).parse_block();
     }
 }
 
@@ -91,6 +110,30 @@ fn is_axis_letter(letter: u8) -> bool {
 }
 
 impl<'a> Parser<'a> {
+    fn new(
+        line: &'a str,
+        lexemes: &'a [Lexeme],
+        block: &'a mut Block,
+        diagnostics: &'a mut Vec<Diagnostic>,
+        context: &'a SyntaxContext,
+    ) -> Parser<'a> {
+        Parser {
+            line,
+            lexemes,
+            position: 0,
+            block,
+            diagnostics,
+            context,
+            depth: 0,
+            depth_reported: false,
+            unclosed_reported: false,
+            modifier_depth: 0,
+            precedence_reported: false,
+            condition_depth: 0,
+            group_depth: 0,
+        }
+    }
+
     // ----- token access -------------------------------------------------------------------------
 
     fn token_at(&self, index: usize) -> Option<Token> {
@@ -205,22 +248,7 @@ impl<'a> Parser<'a> {
     // ----- block layout -------------------------------------------------------------------------
 
     fn parse_block(&mut self) {
-        // Characters are never more than bytes, so most lines skip the count.
-        let character_count = if self.line.len() > self.context.max_block_length {
-            self.line.chars().count()
-        } else {
-            0
-        };
-        if character_count > self.context.max_block_length {
-            self.report(
-                Code::BlockTooLong,
-                Span::new(0, self.line.len()),
-                format!(
-                    "this block has {character_count} characters; the control accepts at most {} (comment included)",
-                    self.context.max_block_length
-                ),
-            );
-        }
+        self.check_block_length();
         if let Some(Lexeme {
             token: Some(Token::Comment),
             span,
@@ -245,6 +273,25 @@ impl<'a> Parser<'a> {
             }
         }
         self.check_block();
+    }
+
+    fn check_block_length(&mut self) {
+        // Characters are never more than bytes, so most lines skip the count.
+        let character_count = if self.line.len() > self.context.max_block_length {
+            self.line.chars().count()
+        } else {
+            0
+        };
+        if character_count > self.context.max_block_length {
+            self.report(
+                Code::BlockTooLong,
+                Span::new(0, self.line.len()),
+                format!(
+                    "this block has {character_count} characters; the control accepts at most {} (comment included)",
+                    self.context.max_block_length
+                ),
+            );
+        }
     }
 
     fn parse_skip_level(&mut self) {
@@ -812,7 +859,12 @@ impl<'a> Parser<'a> {
         }
         let start = self.position;
         let sign = match self.peek() {
-            Some(Token::Minus) | Some(Token::Plus) if self.peek_nth(1) == Some(Token::Number) => {
+            Some(Token::Minus) | Some(Token::Plus)
+                if matches!(
+                    self.peek_nth(1),
+                    Some(Token::Number) | Some(Token::LeftParen) | Some(Token::Letter) | Some(Token::Identifier) | Some(Token::SystemVariable)
+                ) =>
+            {
                 let negative = self.peek() == Some(Token::Minus);
                 self.advance();
                 Some(negative)
@@ -888,6 +940,39 @@ impl<'a> Parser<'a> {
                 );
                 value
             }
+            Some(Token::LeftParen) | Some(Token::Letter) | Some(Token::Identifier) | Some(Token::SystemVariable)
+                if self.value_without_equals_here(sign.is_some()) =>
+            {
+                // `Z(5+1)`, `Y-R2`, `X R1`: an expression or variable value needs `=`.
+                let value_start = self.span_at(start);
+                let expr = self.parse_expression();
+                let expr_span = self.expr_span(expr);
+                let whole_value = value_start.to(expr_span);
+                let address = self.text(name_span).to_string();
+                let value_text = self.text(whole_value).to_string();
+                let replacement = format!("{address}={value_text}");
+                let fix = Fix::replace(
+                    format!("Write `{replacement}`"),
+                    name_span.to(whole_value),
+                    replacement.clone(),
+                );
+                self.report_with_fix(
+                    Code::ValueNeedsEquals,
+                    name_span.to(whole_value),
+                    format!("a value that is not a single constant needs `=`: `{replacement}`"),
+                    fix,
+                );
+                let expr = if sign == Some(true) {
+                    self.push_expr(ExprKind::Unary(UnaryOp::Negate, expr), whole_value)
+                } else {
+                    expr
+                };
+                Value {
+                    modifier: None,
+                    expr: Some(expr),
+                    has_equals: false,
+                }
+            }
             Some(Token::Letter)
                 if self.letter_at(self.position) == Some(b'R')
                     && self.peek_nth(1) == Some(Token::Number)
@@ -941,15 +1026,40 @@ impl<'a> Parser<'a> {
         }
     }
 
+    /// Whether the tokens at the current position are a value written without `=` (`Y-R2`, `Z(5+1)`),
+    /// rather than the next word of the block. Only a signed value, a bracket right after the address,
+    /// an R parameter or a plain variable name count; another address letter is the next word.
+    fn value_without_equals_here(&self, signed: bool) -> bool {
+        match self.peek() {
+            Some(Token::LeftParen) => signed || self.adjacent(self.position),
+            Some(Token::Letter) => {
+                signed
+                    && self.letter_at(self.position) == Some(b'R')
+                    && self.peek_nth(1) == Some(Token::Number)
+            }
+            Some(Token::SystemVariable) => signed,
+            Some(Token::Identifier) => {
+                if !signed {
+                    return false;
+                }
+                let upper = self.upper_name(self.current_span());
+                keywords::statement_keyword(&upper).is_none()
+                    && GCode::from_name(&upper).is_none()
+                    && !keywords::is_modifier_name(&upper)
+            }
+            _ => false,
+        }
+    }
+
     /// After `=`: a modifier such as `AC(..)` (with the checks of reference §1.8) or an expression.
     fn parse_value_after_equals(&mut self, kind: AddressKind, name_span: Span) -> Value {
         let equals = self.advance();
         if self.at_end() {
-            let text = self.text(name_span).to_string();
+            let text = self.text(name_span.to(equals)).to_string();
             self.report(
                 Code::MissingValue,
                 name_span.to(equals),
-                format!("`{text}=` has no value"),
+                format!("`{text}` has no value"),
             );
             return Value {
                 modifier: None,
@@ -1179,12 +1289,13 @@ impl<'a> Parser<'a> {
         let axis_kind = self.context.axis_kind(&address);
         if modifier.needs_rotary_axis() {
             match axis_kind {
-                Some(AxisKind::Linear) | Some(AxisKind::Transverse) => self.report(
+                Some(kind @ (AxisKind::Linear | AxisKind::Transverse)) => self.report(
                     Code::ModifierNeedsRotaryAxis,
                     whole,
                     format!(
-                        "{} approaches a rotary position; `{address}` is a linear axis",
-                        modifier.as_str()
+                        "{} approaches a rotary position; `{address}` is a {} axis",
+                        modifier.as_str(),
+                        kind.as_str()
                     ),
                 ),
                 Some(AxisKind::Rotary) if modifier.needs_modulo_axis() => self.report(
@@ -1300,6 +1411,18 @@ impl<'a> Parser<'a> {
             return;
         }
         let next = self.peek_nth(1);
+        if is_access_level_keyword(&upper) && next == Some(Token::Number) {
+            // `APW 11 APR 11` in a definition file sets the access levels of the definitions below.
+            self.advance();
+            self.advance();
+            let span = name_span.to(Span::new(self.previous_end(), self.previous_end()));
+            self.block.statements.push(Statement::Instruction {
+                name: name_span,
+                args: Vec::new(),
+                span,
+            });
+            return;
+        }
         if next == Some(Token::Assign) || next == Some(Token::LeftBracket) {
             self.advance();
             let named = keywords::named_address(&upper);
@@ -1470,6 +1593,19 @@ impl<'a> Parser<'a> {
         match keyword {
             StatementKeyword::Structure(structure) => self.parse_structure(structure, keyword_span),
             StatementKeyword::Jump(kind) => self.parse_jump(kind, keyword_span, None),
+            StatementKeyword::Def if self.text(keyword_span).eq_ignore_ascii_case("REDEF") => {
+                // `REDEF name attributes` changes attributes of an existing variable (also of machine
+                // data in access files); it has no type and defines nothing new.
+                while !self.at_end() {
+                    self.advance();
+                }
+                let span = keyword_span.to(Span::new(self.previous_end(), self.previous_end()));
+                self.block.statements.push(Statement::Instruction {
+                    name: keyword_span,
+                    args: Vec::new(),
+                    span,
+                });
+            }
             StatementKeyword::Def => self.parse_definition(keyword_span),
             StatementKeyword::Define => self.parse_macro_definition(keyword_span),
             StatementKeyword::Proc => self.parse_procedure_header(keyword_span),
@@ -1727,7 +1863,7 @@ impl<'a> Parser<'a> {
     }
 
     fn parse_condition(&mut self, keyword_span: Span) -> Option<ExprId> {
-        if self.at_end() {
+        if self.at_end() || self.jump_keyword_here().is_some() {
             let text = self.text(keyword_span).to_string();
             self.report(
                 Code::ExpectedExpression,
@@ -1806,6 +1942,8 @@ impl<'a> Parser<'a> {
     fn parse_definition(&mut self, keyword_span: Span) {
         let mut names = Vec::new();
         let mut expect_name = false;
+        let mut seen_type = false;
+        let mut in_initializer = false;
         let mut depth: i32 = 0;
         let mut after_type_index = false;
         while !self.at_end() {
@@ -1820,11 +1958,29 @@ impl<'a> Parser<'a> {
                         expect_name = true;
                     }
                 }
-                Some(Token::Comma) if depth == 0 => expect_name = true,
-                Some(Token::Assign) if depth == 0 => expect_name = false,
-                Some(Token::Identifier) | Some(Token::Letter) if depth == 0 => {
+                Some(Token::Comma) if depth == 0 => {
+                    expect_name = true;
+                    in_initializer = false;
+                }
+                Some(Token::Assign) if depth == 0 => {
+                    expect_name = false;
+                    in_initializer = true;
+                }
+                Some(Token::Identifier) | Some(Token::Letter) if depth == 0 && !in_initializer => {
                     let upper = self.upper_name(span);
-                    if is_type_name(&upper) {
+                    if is_definition_attribute(&upper) {
+                        // Attributes such as `LLI 0 ULI 4` or `APR 7` may stand before or after the
+                        // type; their value is not a name.
+                        if definition_attribute_takes_value(&upper) {
+                            if matches!(self.peek(), Some(Token::Minus) | Some(Token::Plus)) {
+                                self.advance();
+                            }
+                            if !self.at_end() {
+                                self.advance();
+                            }
+                        }
+                    } else if !seen_type && is_type_name(&upper) {
+                        seen_type = true;
                         expect_name = true;
                         if upper == "STRING" && self.is_at(Token::LeftBracket) {
                             expect_name = false;
@@ -1832,20 +1988,26 @@ impl<'a> Parser<'a> {
                         }
                     } else if expect_name {
                         expect_name = false;
-                        if token == Some(Token::Letter) && !self.is_at(Token::Number) {
-                            self.report(
-                                Code::InvalidLabel,
-                                span,
-                                format!(
-                                    "`{}` is an address letter and cannot be a variable name; names start with two letters",
-                                    self.text(span)
-                                ),
-                            );
-                        } else if token == Some(Token::Identifier) {
-                            self.check_name_style(span, "variable");
-                        }
+                        self.check_definition_name(token, span);
                         names.push(span);
+                    } else if seen_type {
+                        let text = self.text(span).to_string();
+                        self.report(
+                            Code::UnexpectedToken,
+                            span,
+                            format!("`{text}` follows a name without a comma: separate the names of one DEF with `,`"),
+                        );
                     }
+                }
+                Some(Token::SystemVariable) | Some(Token::Number) if expect_name && depth == 0 => {
+                    expect_name = false;
+                    let text = self.text(span).to_string();
+                    let message = if token == Some(Token::SystemVariable) {
+                        format!("`{text}` is a system variable; DEF defines user variables only")
+                    } else {
+                        format!("`{text}...` cannot be a variable name: names start with two letters")
+                    };
+                    self.report(Code::InvalidLabel, span, message);
                 }
                 Some(Token::UnterminatedString) => self.report_unterminated_string(span),
                 _ => {}
@@ -1858,10 +2020,40 @@ impl<'a> Parser<'a> {
                 "this definition has an unclosed bracket or parenthesis",
             );
         }
+        if names.is_empty() {
+            let message = if seen_type {
+                "DEF needs the name of the variable after its type"
+            } else {
+                "DEF needs a type (INT, REAL, BOOL, CHAR, STRING[n], AXIS, FRAME) and a name"
+            };
+            self.report(Code::ExpectedExpression, keyword_span, message);
+        }
         let span = keyword_span.to(Span::new(self.previous_end(), self.previous_end()));
         self.block
             .statements
             .push(Statement::Definition { names, span });
+    }
+
+    /// A defined name must not be an address letter (`DEF REAL A`) and should start with two letters.
+    fn check_definition_name(&mut self, token: Option<Token>, span: Span) {
+        if token == Some(Token::Letter) {
+            let text = self.text(span).to_string();
+            if self.is_at(Token::Number) && self.adjacent(self.position) {
+                self.report(
+                    Code::LabelStyle,
+                    span.to(self.current_span()),
+                    format!("`{text}{}` starts with a single letter; names should start with two letters", self.text(self.current_span())),
+                );
+            } else {
+                self.report(
+                    Code::InvalidLabel,
+                    span,
+                    format!("`{text}` is an address letter and cannot be a variable name; names start with two letters"),
+                );
+            }
+        } else {
+            self.check_name_style(span, "variable");
+        }
     }
 
     fn parse_macro_definition(&mut self, keyword_span: Span) {
@@ -2462,7 +2654,10 @@ impl<'a> Parser<'a> {
         if self.is_at(token) {
             return self.advance();
         }
-        if !self.unclosed_reported {
+        // An unterminated string swallows the rest of the line, bracket included: S132 says it all.
+        let after_unterminated_string = self.position > 0
+            && self.token_at(self.position - 1) == Some(Token::UnterminatedString);
+        if !self.unclosed_reported && !after_unterminated_string {
             self.unclosed_reported = true;
             let (code, closing) = if token == Token::RightParen {
                 (Code::UnbalancedParentheses, ")")
@@ -2529,7 +2724,7 @@ impl<'a> Parser<'a> {
                     Code::SameGroupTwice,
                     *span,
                     format!(
-                        "{} and `{first_text}` belong to the same G group {group}; only one may stand in a block (alarm 12060)",
+                        "`{}` and `{first_text}` belong to the same G group {group}; only one may stand in a block (alarm 12060)",
                         self.text(*span)
                     ),
                 );
@@ -2540,6 +2735,7 @@ impl<'a> Parser<'a> {
     }
 
     fn check_alone_instructions(&mut self, statements: &[Statement]) {
+        self.check_dwell_block(statements);
         let Some((instruction, instruction_span)) =
             statements.iter().find_map(|statement| match statement {
                 Statement::GCode { code, span } if code.must_stand_alone() => Some((*code, *span)),
@@ -2576,6 +2772,28 @@ impl<'a> Parser<'a> {
                     span,
                     format!("`{instruction_text}` must stand in a block of its own; move `{text}` to another block"),
                 );
+            }
+        }
+    }
+
+    /// G4 dwells for F seconds or S revolutions and is written in a block of its own (reference §2.4):
+    /// axis words in a G4 block are reported.
+    fn check_dwell_block(&mut self, statements: &[Statement]) {
+        let is_dwell = |statement: &Statement| matches!(statement, Statement::GCode { code, .. } if code.name() == "G4");
+        let Some(dwell_span) = statements.iter().find(|statement| is_dwell(statement)).map(Statement::span) else {
+            return;
+        };
+        for statement in statements {
+            if let Statement::Address(word) = statement {
+                if matches!(word.kind, AddressKind::Axis | AddressKind::Interpolation) {
+                    let text = self.text(word.span).to_string();
+                    let dwell = self.text(dwell_span).to_string();
+                    self.report(
+                        Code::InstructionNotAlone,
+                        word.span,
+                        format!("`{dwell}` (dwell) must stand in a block of its own with only F (seconds) or S (revolutions); move `{text}` to another block"),
+                    );
+                }
             }
         }
     }
@@ -2656,6 +2874,28 @@ fn axis_name(letter: u8, extension: Option<u32>, buffer: &mut [u8; 12]) -> &str 
         }
     }
     std::str::from_utf8(&buffer[..length]).unwrap_or("?")
+}
+
+/// Attributes of `DEF` in definition files (reference §8.1): storage, synchronisation, access levels,
+/// limits, units and initialisation.
+fn is_definition_attribute(upper: &str) -> bool {
+    matches!(
+        upper,
+        "NCK" | "CHAN" | "SYNR" | "SYNW" | "SYNRW" | "APR" | "APW" | "APRP" | "APWP" | "APRB" | "APWB"
+            | "PHY" | "LLI" | "ULI" | "INIPO" | "INIRE" | "INICF" | "PRLOC"
+    )
+}
+
+fn definition_attribute_takes_value(upper: &str) -> bool {
+    matches!(
+        upper,
+        "APR" | "APW" | "APRP" | "APWP" | "APRB" | "APWB" | "PHY" | "LLI" | "ULI"
+    )
+}
+
+/// Access levels for reading and writing the definitions that follow (`APR 15 APW 12`).
+fn is_access_level_keyword(upper: &str) -> bool {
+    matches!(upper, "APR" | "APW" | "APRP" | "APWP" | "APRB" | "APWB")
 }
 
 fn is_type_name(upper: &str) -> bool {
