@@ -33,14 +33,76 @@ fn check_text(text: &str, context: &SyntaxContext) -> usize {
 #[test]
 fn tricky_lines_agree() {
     let lines = [
-        "", "   ", "\t", "; only a comment", "N10", "N10 X1", "N 10 X1", "N10.5 X1", "N-10", "X5E3", "X1.5EX-3",
-        "X5EX", "X-.5", "X+.5", "X.", "X5.", "X5.Y3", "X1.2.3", "G01", "G0X10Y5", "G1.0", "G-1", "G 1",
-        "G12", "G600", "G505", "G17 G18", "G0 G1 X1", "X 10", "X- 5", "X -5", "X10;c", "X10 ;c", "N10 N20",
-        "X10 X20", "T0D0", "M3 M8", "M2=5", "X1=10", "XR1", "X_1", "X10_A", "R1", "O10", "L10", "L10 P2",
-        "F100 F200", "U10", "E5", "A10 B20 C30", "A2=1", "x10 y-2.5 z.5", "X10\u{0}", "X10&Y5", "/N10 X1",
-        ":10 X1", "%_N_TEST_MPF", "N10 G0 X10 ; a comment with ; and \"", "X99999999999999999999999",
-        "G99999999999999999999", "N99999999999999999999", "X00012.500", "I10 J-5 K0", "G4 F2", "S1000 M3",
-        "Ä", "X10 Ä", "TRANS X10", "G111 X0 Y0", "G111 X0 Y0 F100",
+        "",
+        "   ",
+        "\t",
+        "; only a comment",
+        "N10",
+        "N10 X1",
+        "N 10 X1",
+        "N10.5 X1",
+        "N-10",
+        "X5E3",
+        "X1.5EX-3",
+        "X5EX",
+        "X-.5",
+        "X+.5",
+        "X.",
+        "X5.",
+        "X5.Y3",
+        "X1.2.3",
+        "G01",
+        "G0X10Y5",
+        "G1.0",
+        "G-1",
+        "G 1",
+        "G12",
+        "G600",
+        "G505",
+        "G17 G18",
+        "G0 G1 X1",
+        "X 10",
+        "X- 5",
+        "X -5",
+        "X10;c",
+        "X10 ;c",
+        "N10 N20",
+        "X10 X20",
+        "T0D0",
+        "M3 M8",
+        "M2=5",
+        "X1=10",
+        "XR1",
+        "X_1",
+        "X10_A",
+        "R1",
+        "O10",
+        "L10",
+        "L10 P2",
+        "F100 F200",
+        "U10",
+        "E5",
+        "A10 B20 C30",
+        "A2=1",
+        "x10 y-2.5 z.5",
+        "X10\u{0}",
+        "X10&Y5",
+        "/N10 X1",
+        ":10 X1",
+        "%_N_TEST_MPF",
+        "N10 G0 X10 ; a comment with ; and \"",
+        "X99999999999999999999999",
+        "G99999999999999999999",
+        "N99999999999999999999",
+        "X00012.500",
+        "I10 J-5 K0",
+        "G4 F2",
+        "S1000 M3",
+        "Ä",
+        "X10 Ä",
+        "TRANS X10",
+        "G111 X0 Y0",
+        "G111 X0 Y0 F100",
     ];
     let mill = SyntaxContext::new(&MachineConfig::mill());
     let turn = SyntaxContext::new(&MachineConfig::turn());
@@ -60,7 +122,10 @@ fn generate(style: &str) -> Option<String> {
         .args(["--lines", "20000", "--style", style])
         .output()
         .ok()?;
-    output.status.success().then(|| String::from_utf8_lossy(&output.stdout).into_owned())
+    output
+        .status
+        .success()
+        .then(|| String::from_utf8_lossy(&output.stdout).into_owned())
 }
 
 #[test]
@@ -70,7 +135,9 @@ fn generated_programs_agree() {
     let mut checked = 0;
     for style in ["cam3d", "inc", "turning", "mixed"] {
         match generate(style) {
-            Some(text) => checked += check_text(&text, if style == "turning" { &turn } else { &mill }),
+            Some(text) => {
+                checked += check_text(&text, if style == "turning" { &turn } else { &mill })
+            }
             None => println!("generator not available; skipping the {style} program"),
         }
     }
@@ -108,5 +175,8 @@ fn corpus_lines_agree() {
         checked += check_text(&text, &mill);
     }
     println!("compared {checked} corpus lines");
-    assert!(checked > 10_000, "the corpus should have many lines, found {checked}");
+    assert!(
+        checked > 10_000,
+        "the corpus should have many lines, found {checked}"
+    );
 }

@@ -862,7 +862,11 @@ impl<'a> Parser<'a> {
             Some(Token::Minus) | Some(Token::Plus)
                 if matches!(
                     self.peek_nth(1),
-                    Some(Token::Number) | Some(Token::LeftParen) | Some(Token::Letter) | Some(Token::Identifier) | Some(Token::SystemVariable)
+                    Some(Token::Number)
+                        | Some(Token::LeftParen)
+                        | Some(Token::Letter)
+                        | Some(Token::Identifier)
+                        | Some(Token::SystemVariable)
                 ) =>
             {
                 let negative = self.peek() == Some(Token::Minus);
@@ -940,7 +944,10 @@ impl<'a> Parser<'a> {
                 );
                 value
             }
-            Some(Token::LeftParen) | Some(Token::Letter) | Some(Token::Identifier) | Some(Token::SystemVariable)
+            Some(Token::LeftParen)
+            | Some(Token::Letter)
+            | Some(Token::Identifier)
+            | Some(Token::SystemVariable)
                 if self.value_without_equals_here(sign.is_some()) =>
             {
                 // `Z(5+1)`, `Y-R2`, `X R1`: an expression or variable value needs `=`.
@@ -1944,6 +1951,7 @@ impl<'a> Parser<'a> {
         let mut expect_name = false;
         let mut seen_type = false;
         let mut in_initializer = false;
+        let mut invalid_name_reported = false;
         let mut depth: i32 = 0;
         let mut after_type_index = false;
         while !self.at_end() {
@@ -2001,11 +2009,20 @@ impl<'a> Parser<'a> {
                 }
                 Some(Token::SystemVariable) | Some(Token::Number) if expect_name && depth == 0 => {
                     expect_name = false;
+                    invalid_name_reported = true;
+                    // `1COUNT` lexes as a number and a name: report them as one name.
+                    let mut span = span;
+                    if token == Some(Token::Number)
+                        && self.is_at(Token::Identifier)
+                        && self.adjacent(self.position)
+                    {
+                        span = span.to(self.advance());
+                    }
                     let text = self.text(span).to_string();
                     let message = if token == Some(Token::SystemVariable) {
                         format!("`{text}` is a system variable; DEF defines user variables only")
                     } else {
-                        format!("`{text}...` cannot be a variable name: names start with two letters")
+                        format!("`{text}` cannot be a variable name: names start with two letters")
                     };
                     self.report(Code::InvalidLabel, span, message);
                 }
@@ -2020,7 +2037,7 @@ impl<'a> Parser<'a> {
                 "this definition has an unclosed bracket or parenthesis",
             );
         }
-        if names.is_empty() {
+        if names.is_empty() && !invalid_name_reported {
             let message = if seen_type {
                 "DEF needs the name of the variable after its type"
             } else {
@@ -2039,10 +2056,18 @@ impl<'a> Parser<'a> {
         if token == Some(Token::Letter) {
             let text = self.text(span).to_string();
             if self.is_at(Token::Number) && self.adjacent(self.position) {
+                // `V1AR` lexes as a letter, a number and a name: it is one name.
+                let mut whole = span.to(self.advance());
+                if self.is_at(Token::Identifier) && self.adjacent(self.position) {
+                    whole = whole.to(self.advance());
+                }
+                let name = self.text(whole).to_string();
                 self.report(
                     Code::LabelStyle,
-                    span.to(self.current_span()),
-                    format!("`{text}{}` starts with a single letter; names should start with two letters", self.text(self.current_span())),
+                    whole,
+                    format!(
+                        "`{name}` starts with a single letter; names should start with two letters"
+                    ),
                 );
             } else {
                 self.report(
@@ -2780,7 +2805,11 @@ impl<'a> Parser<'a> {
     /// axis words in a G4 block are reported.
     fn check_dwell_block(&mut self, statements: &[Statement]) {
         let is_dwell = |statement: &Statement| matches!(statement, Statement::GCode { code, .. } if code.name() == "G4");
-        let Some(dwell_span) = statements.iter().find(|statement| is_dwell(statement)).map(Statement::span) else {
+        let Some(dwell_span) = statements
+            .iter()
+            .find(|statement| is_dwell(statement))
+            .map(Statement::span)
+        else {
             return;
         };
         for statement in statements {
@@ -2881,8 +2910,24 @@ fn axis_name(letter: u8, extension: Option<u32>, buffer: &mut [u8; 12]) -> &str 
 fn is_definition_attribute(upper: &str) -> bool {
     matches!(
         upper,
-        "NCK" | "CHAN" | "SYNR" | "SYNW" | "SYNRW" | "APR" | "APW" | "APRP" | "APWP" | "APRB" | "APWB"
-            | "PHY" | "LLI" | "ULI" | "INIPO" | "INIRE" | "INICF" | "PRLOC"
+        "NCK"
+            | "CHAN"
+            | "SYNR"
+            | "SYNW"
+            | "SYNRW"
+            | "APR"
+            | "APW"
+            | "APRP"
+            | "APWP"
+            | "APRB"
+            | "APWB"
+            | "PHY"
+            | "LLI"
+            | "ULI"
+            | "INIPO"
+            | "INIRE"
+            | "INICF"
+            | "PRLOC"
     )
 }
 

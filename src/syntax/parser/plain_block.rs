@@ -84,7 +84,9 @@ impl Parser<'_> {
             // lexer decides.
             match bytes.get(index) {
                 Some(b'.') | Some(b'_') => return false,
-                Some(b'E') | Some(b'e') if matches!(bytes.get(index + 1), Some(b'X') | Some(b'x')) => {
+                Some(b'E') | Some(b'e')
+                    if matches!(bytes.get(index + 1), Some(b'X') | Some(b'x')) =>
+                {
                     return false
                 }
                 _ => {}
@@ -131,7 +133,8 @@ impl Parser<'_> {
                     let kind = self.classify_letter(letter, None);
                     let magnitude = parse_number(number_text).unwrap_or(0.0);
                     let value = if negative { -magnitude } else { magnitude };
-                    let expr = self.push_expr(ExprKind::Number(value), Span::new(value_start, number_end));
+                    let expr =
+                        self.push_expr(ExprKind::Number(value), Span::new(value_start, number_end));
                     if kind == AddressKind::Axis {
                         self.check_axis_configured(letter, None, word_span);
                     }
