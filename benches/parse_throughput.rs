@@ -2,7 +2,8 @@
 //!
 //! Run with `cargo bench --bench parse_throughput`. The programs come from
 //! `../shared/bench/gen_program.py` (1,000,000 lines each unless `BENCH_LINES` says otherwise); when the
-//! generator is absent the benchmark says so and exits without figures.
+//! generator is absent the benchmark says so and exits without figures. `BENCH_STYLES=cam3d,inc` picks
+//! the styles.
 
 use sinumerik_lsp::config::MachineConfig;
 use sinumerik_lsp::syntax::{lines, Block, LineParser, SyntaxContext};
@@ -47,7 +48,9 @@ fn main() {
     let mill = SyntaxContext::new(&MachineConfig::mill());
     let turn = SyntaxContext::new(&MachineConfig::turn());
     println!("lex + parse throughput, one core, {line_count} lines per program");
-    for style in ["cam3d", "inc", "turning", "mixed"] {
+    let styles =
+        std::env::var("BENCH_STYLES").unwrap_or_else(|_| "cam3d,inc,turning,mixed".to_string());
+    for style in styles.split(',') {
         let Some(text) = generate(style, line_count) else {
             println!("{style}: skipped (../shared/bench/gen_program.py or python3 not available)");
             continue;

@@ -179,14 +179,14 @@ impl Checked {
                 spans.extend(fix.edits.iter().map(|edit| edit.span));
             }
             for span in spans {
-                if span.start > span.end
+                if span.start() > span.end()
                     || !text.is_char_boundary(span.start())
                     || !text.is_char_boundary(span.end())
                 {
                     problems.push(format!(
                         "span {}..{} does not fit line {} ({} bytes): {}",
-                        span.start,
-                        span.end,
+                        span.start(),
+                        span.end(),
                         item.line + 1,
                         text.len(),
                         self.render_one(item)

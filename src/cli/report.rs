@@ -355,7 +355,7 @@ mod tests {
         assert_eq!(columns("ÄB", Span::new(1, 1)), (1, 2));
         assert_eq!(columns("ÄB", Span::new(1, 3)), (1, 3));
         assert_eq!(columns("AB", Span::new(5, 1)), (3, 3));
-        assert_eq!(columns("AB", Span { start: 2, end: 0 }), (3, 3));
+        assert_eq!(columns("AB", Span::new(2, 0)), (3, 3));
     }
 
     #[test]

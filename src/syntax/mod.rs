@@ -46,7 +46,7 @@ pub fn check_program(text: &str, config: &MachineConfig) -> Vec<LineDiagnostic> 
     for item in &mut out {
         item.diagnostic.severity = config.severity_of(item.diagnostic.code);
     }
-    out.sort_by_key(|item| (item.line, item.diagnostic.span.start));
+    out.sort_by_key(|item| (item.line, item.diagnostic.span.start()));
     out
 }
 

@@ -189,7 +189,7 @@ impl<'a> Parser<'a> {
     fn adjacent(&self, index: usize) -> bool {
         index > 0
             && index < self.lexemes.len()
-            && self.span_at(index - 1).end == self.span_at(index).start
+            && self.span_at(index - 1).end() == self.span_at(index).start()
     }
 
     fn advance(&mut self) -> Span {
