@@ -453,6 +453,11 @@ impl GCode {
         }
     }
 
+    /// G4, the dwell: group 2, first in its group.
+    pub fn is_dwell(self) -> bool {
+        self.group() == 2 && self.index_in_group() == 1
+    }
+
     /// Frame and pole instructions (group 3) must stand alone in their block.
     pub fn must_stand_alone(self) -> bool {
         self.group() == 3

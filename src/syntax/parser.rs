@@ -2811,7 +2811,9 @@ impl<'a> Parser<'a> {
     }
 
     fn check_g_groups(&mut self, statements: &[Statement]) {
-        let mut seen: [Option<Span>; 64] = [None; 64];
+        // A bit per group seen so far; the first span of a group is looked up again only when the group
+        // repeats, which keeps the common block free of per-block tables.
+        let mut seen_groups: u64 = 0;
         let mut syntax_defining: Option<(GCode, Span)> = None;
         for statement in statements {
             let Statement::GCode { code, span } = statement else {
@@ -2834,8 +2836,15 @@ impl<'a> Parser<'a> {
                 }
                 continue;
             }
-            let slot = &mut seen[(group as usize).min(63)];
-            if let Some(first_span) = *slot {
+            let bit = 1u64 << (group as u32).min(63);
+            if seen_groups & bit != 0 {
+                let first_span = statements
+                    .iter()
+                    .find_map(|earlier| match earlier {
+                        Statement::GCode { code, span } if code.group() == group => Some(*span),
+                        _ => None,
+                    })
+                    .unwrap_or(*span);
                 let first_text = self.text(first_span).to_string();
                 self.report(
                     Code::SameGroupTwice,
@@ -2846,7 +2855,7 @@ impl<'a> Parser<'a> {
                     ),
                 );
             } else {
-                *slot = Some(*span);
+                seen_groups |= bit;
             }
         }
     }
@@ -2896,7 +2905,7 @@ impl<'a> Parser<'a> {
     /// G4 dwells for F seconds or S revolutions and is written in a block of its own (reference §2.4):
     /// axis words in a G4 block are reported.
     fn check_dwell_block(&mut self, statements: &[Statement]) {
-        let is_dwell = |statement: &Statement| matches!(statement, Statement::GCode { code, .. } if code.name() == "G4");
+        let is_dwell = |statement: &Statement| matches!(statement, Statement::GCode { code, .. } if code.is_dwell());
         let Some(dwell_span) = statements
             .iter()
             .find(|statement| is_dwell(statement))
