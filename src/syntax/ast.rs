@@ -248,11 +248,32 @@ impl AddressKind {
 pub struct Value {
     /// The position modifier and the span of its name, if one was written.
     pub modifier: Option<(Modifier, Span)>,
-    /// The value expression (inside the modifier's parentheses when there is one). `None` when it is
-    /// missing; a diagnostic has been reported then.
-    pub expr: Option<ExprId>,
+    /// The value (inside the modifier's parentheses when there is one).
+    pub expr: ValueExpr,
     /// Whether `=` was written.
     pub has_equals: bool,
+}
+
+/// What an address word's value is.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum ValueExpr {
+    /// No value was written; a diagnostic has been reported.
+    Missing,
+    /// A constant written without `=` (`X10`, `Z-5.5`, sign included). Most words of a program are
+    /// such constants, so they are kept inline instead of as a node of the expression arena.
+    Constant { value: f64, span: Span },
+    /// Any other value: a node of [`Block::exprs`].
+    Expr(ExprId),
+}
+
+impl ValueExpr {
+    /// The expression node, when the value is one.
+    pub fn expr_id(self) -> Option<ExprId> {
+        match self {
+            ValueExpr::Expr(id) => Some(id),
+            _ => None,
+        }
+    }
 }
 
 /// An address with its value, e.g. `X10`, `Z=IC(-32)`, `X1=10`, `S1=470`, `CR=5`, `POS[A]=DC(10)`.

@@ -853,7 +853,7 @@ impl<'a> Parser<'a> {
             );
             return Value {
                 modifier: None,
-                expr: None,
+                expr: ValueExpr::Missing,
                 has_equals: false,
             };
         }
@@ -881,10 +881,9 @@ impl<'a> Parser<'a> {
                 let value = parse_number(self.text(number_span)).unwrap_or(0.0);
                 let value = if sign == Some(true) { -value } else { value };
                 let span = self.span_at(start).to(number_span);
-                let expr = self.push_expr(ExprKind::Number(value), span);
                 Value {
                     modifier: None,
-                    expr: Some(expr),
+                    expr: ValueExpr::Constant { value, span },
                     has_equals: false,
                 }
             }
@@ -905,7 +904,7 @@ impl<'a> Parser<'a> {
                 let expr = self.push_expr(ExprKind::String, span);
                 Value {
                     modifier: None,
-                    expr: Some(expr),
+                    expr: ValueExpr::Expr(expr),
                     has_equals: false,
                 }
             }
@@ -914,7 +913,7 @@ impl<'a> Parser<'a> {
                 self.report_bad_number(span);
                 Value {
                     modifier: None,
-                    expr: None,
+                    expr: ValueExpr::Missing,
                     has_equals: false,
                 }
             }
@@ -976,7 +975,7 @@ impl<'a> Parser<'a> {
                 };
                 Value {
                     modifier: None,
-                    expr: Some(expr),
+                    expr: ValueExpr::Expr(expr),
                     has_equals: false,
                 }
             }
@@ -1008,7 +1007,7 @@ impl<'a> Parser<'a> {
                 let expr = self.push_expr(ExprKind::RParameter(number), r_span);
                 Value {
                     modifier: None,
-                    expr: Some(expr),
+                    expr: ValueExpr::Expr(expr),
                     has_equals: false,
                 }
             }
@@ -1026,7 +1025,7 @@ impl<'a> Parser<'a> {
                 );
                 Value {
                     modifier: None,
-                    expr: None,
+                    expr: ValueExpr::Missing,
                     has_equals: false,
                 }
             }
@@ -1070,7 +1069,7 @@ impl<'a> Parser<'a> {
             );
             return Value {
                 modifier: None,
-                expr: None,
+                expr: ValueExpr::Missing,
                 has_equals: true,
             };
         }
@@ -1085,7 +1084,7 @@ impl<'a> Parser<'a> {
                 return Value {
                     modifier: Modifier::from_name(&name)
                         .map(|modifier| (modifier, name_token_span)),
-                    expr: None,
+                    expr: ValueExpr::Missing,
                     has_equals: true,
                 };
             }
@@ -1115,7 +1114,7 @@ impl<'a> Parser<'a> {
                 let expr = self.push_expr(ExprKind::Number(value), span);
                 return Value {
                     modifier: Some((modifier, name_token_span)),
-                    expr: Some(expr),
+                    expr: ValueExpr::Expr(expr),
                     has_equals: true,
                 };
             }
@@ -1139,7 +1138,7 @@ impl<'a> Parser<'a> {
                     let expr = self.parse_call_expression_without_function_check();
                     return Value {
                         modifier: None,
-                        expr: Some(expr),
+                        expr: ValueExpr::Expr(expr),
                         has_equals: true,
                     };
                 }
@@ -1148,7 +1147,7 @@ impl<'a> Parser<'a> {
         let expr = self.parse_expression();
         Value {
             modifier: None,
-            expr: Some(expr),
+            expr: ValueExpr::Expr(expr),
             has_equals: true,
         }
     }
@@ -1254,7 +1253,11 @@ impl<'a> Parser<'a> {
         self.check_modifier_allowed(kind, address_span, modifier, modifier_span, whole);
         Value {
             modifier: Some((modifier, modifier_span)),
-            expr: values.into_iter().flatten().next(),
+            expr: values
+                .into_iter()
+                .flatten()
+                .next()
+                .map_or(ValueExpr::Missing, ValueExpr::Expr),
             has_equals: true,
         }
     }
@@ -1368,7 +1371,7 @@ impl<'a> Parser<'a> {
                         "{name} only applies to an axis or other address; `{target}` is a variable"
                     ),
                 );
-                return value.expr;
+                return value.expr.expr_id();
             }
         }
         Some(self.parse_expression())
@@ -1455,7 +1458,7 @@ impl<'a> Parser<'a> {
                     );
                     Value {
                         modifier: None,
-                        expr: None,
+                        expr: ValueExpr::Missing,
                         has_equals: false,
                     }
                 };
@@ -3071,11 +3074,7 @@ pub fn parse_number(text: &str) -> Option<f64> {
 /// integer below 2^53 and at most 22 decimals follow, one IEEE division gives the correctly rounded
 /// value, the same as the standard parser.
 fn parse_simple_decimal(bytes: &[u8]) -> Option<f64> {
-    const POWERS_OF_TEN: [f64; 23] = [
-        1e0, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8, 1e9, 1e10, 1e11, 1e12, 1e13, 1e14, 1e15, 1e16,
-        1e17, 1e18, 1e19, 1e20, 1e21, 1e22,
-    ];
-    if bytes.is_empty() || bytes.len() > 17 {
+    if bytes.is_empty() || bytes.len() > MAX_SIMPLE_DECIMAL_LENGTH {
         return None;
     }
     let mut mantissa: u64 = 0;
@@ -3092,10 +3091,23 @@ fn parse_simple_decimal(bytes: &[u8]) -> Option<f64> {
             _ => return None,
         }
     }
+    decimal_from_parts(mantissa, decimals.unwrap_or(0))
+}
+
+/// Longest number text (digits and point) the exact fast path takes: 17 digits cannot overflow `u64`.
+const MAX_SIMPLE_DECIMAL_LENGTH: usize = 17;
+
+/// `mantissa / 10^decimals`, exact when the mantissa is below 2^53 (both operands are exact doubles and
+/// IEEE division rounds correctly); `None` otherwise.
+fn decimal_from_parts(mantissa: u64, decimals: usize) -> Option<f64> {
+    const POWERS_OF_TEN: [f64; 23] = [
+        1e0, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8, 1e9, 1e10, 1e11, 1e12, 1e13, 1e14, 1e15, 1e16,
+        1e17, 1e18, 1e19, 1e20, 1e21, 1e22,
+    ];
     if mantissa >= 1 << 53 {
         return None;
     }
-    Some(mantissa as f64 / POWERS_OF_TEN[decimals.unwrap_or(0)])
+    Some(mantissa as f64 / *POWERS_OF_TEN.get(decimals)?)
 }
 
 /// `$R1` is the spelling of R1 inside synchronized actions.

@@ -68,9 +68,21 @@ impl Parser<'_> {
             let number_start = index;
             let mut digit_count = 0;
             let mut has_point = false;
+            // The digits are also accumulated here, so a short number needs no second pass; wrapping
+            // arithmetic is harmless because longer numbers take `parse_number` below.
+            let mut mantissa: u64 = 0;
+            let mut decimals = 0;
             while index < length {
                 match bytes[index] {
-                    b'0'..=b'9' => digit_count += 1,
+                    byte @ b'0'..=b'9' => {
+                        digit_count += 1;
+                        mantissa = mantissa
+                            .wrapping_mul(10)
+                            .wrapping_add(u64::from(byte - b'0'));
+                        if has_point {
+                            decimals += 1;
+                        }
+                    }
                     b'.' if !has_point => has_point = true,
                     _ => break,
                 }
@@ -131,10 +143,17 @@ impl Parser<'_> {
                         letters_seen |= bit;
                     }
                     let kind = self.classify_letter(letter, None);
-                    let magnitude = parse_number(number_text).unwrap_or(0.0);
+                    let short = number_end - number_start <= MAX_SIMPLE_DECIMAL_LENGTH;
+                    let magnitude = short
+                        .then(|| decimal_from_parts(mantissa, decimals))
+                        .flatten()
+                        .or_else(|| parse_number(number_text))
+                        .unwrap_or(0.0);
                     let value = if negative { -magnitude } else { magnitude };
-                    let expr =
-                        self.push_expr(ExprKind::Number(value), Span::new(value_start, number_end));
+                    let expr = ValueExpr::Constant {
+                        value,
+                        span: Span::new(value_start, number_end),
+                    };
                     if kind == AddressKind::Axis {
                         self.check_axis_configured(letter, None, word_span);
                     }
@@ -144,7 +163,7 @@ impl Parser<'_> {
                         extension: None,
                         value: Value {
                             modifier: None,
-                            expr: Some(expr),
+                            expr,
                             has_equals: false,
                         },
                         span: word_span,
