@@ -225,6 +225,7 @@ codes! {
     ComparisonSpelling = "S174", Warning, "A comparison written `=`, `=<` or `=>` instead of `==`, `<=` or `>=`.";
     AxisNotConfigured = "S180", Warning, "An axis address that is not an axis of the configured machine.";
     StructureMismatch = "S190", Warning, "IF/ELSE/ENDIF, WHILE, FOR, REPEAT, LOOP nesting that does not match (alarm 12640).";
+    TooManyDiagnostics = "S199", Information, "A line with so many findings that the rest are not shown.";
 }
 
 impl fmt::Display for Code {

@@ -15,6 +15,37 @@ mod plain_block;
 /// far below; deeper input is reported (S170) and skipped in linear time.
 pub const MAX_EXPRESSION_DEPTH: u32 = 128;
 
+/// Most findings reported for one line; the last one says that more were dropped.
+pub const MAX_DIAGNOSTICS_PER_LINE: usize = 200;
+
+/// Longest quotation of program text inside a message, in characters.
+const MAX_QUOTE_CHARACTERS: usize = 60;
+
+/// Shortens every `quoted` part of a message that is longer than [`MAX_QUOTE_CHARACTERS`] to its start
+/// and end around an ellipsis. The span still marks the whole text; a message quoting a megabyte-long
+/// name helps nobody in an editor or a terminal.
+fn shorten_long_quotes(message: String) -> String {
+    if message.len() <= MAX_QUOTE_CHARACTERS * 2 {
+        return message;
+    }
+    let mut out = String::with_capacity(message.len().min(1024));
+    for (index, part) in message.split('`').enumerate() {
+        if index > 0 {
+            out.push('`');
+        }
+        let is_quote = index % 2 == 1;
+        let character_count = if is_quote { part.chars().count() } else { 0 };
+        if is_quote && character_count > MAX_QUOTE_CHARACTERS {
+            out.extend(part.chars().take(MAX_QUOTE_CHARACTERS - 15));
+            out.push('…');
+            out.extend(part.chars().skip(character_count - 10));
+        } else {
+            out.push_str(part);
+        }
+    }
+    out
+}
+
 /// A reusable parser: keeps its token buffer between lines.
 #[derive(Default)]
 pub struct LineParser {
@@ -213,12 +244,35 @@ impl<'a> Parser<'a> {
     }
 
     fn report(&mut self, code: Code, span: Span, message: impl Into<String>) {
-        self.diagnostics.push(Diagnostic::new(code, span, message));
+        self.push_diagnostic(Diagnostic::new(code, span, message));
     }
 
     fn report_with_fix(&mut self, code: Code, span: Span, message: impl Into<String>, fix: Fix) {
-        self.diagnostics
-            .push(Diagnostic::new(code, span, message).with_fix(fix));
+        self.push_diagnostic(Diagnostic::new(code, span, message).with_fix(fix));
+    }
+
+    /// Keeps a line's findings bounded: a line of repeated junk would otherwise give one finding per
+    /// token, which helps nobody and costs memory. The last kept finding says that more were dropped.
+    fn push_diagnostic(&mut self, mut diagnostic: Diagnostic) {
+        let count = self.diagnostics.len();
+        if count >= MAX_DIAGNOSTICS_PER_LINE {
+            return;
+        }
+        if count == MAX_DIAGNOSTICS_PER_LINE - 1 {
+            diagnostic = Diagnostic::new(
+                Code::TooManyDiagnostics,
+                diagnostic.span,
+                format!(
+                    "this line has more than {} findings; the rest are not shown",
+                    MAX_DIAGNOSTICS_PER_LINE - 1
+                ),
+            );
+        }
+        diagnostic.message = shorten_long_quotes(diagnostic.message);
+        if let Some(fix) = diagnostic.fix.as_mut() {
+            fix.title = shorten_long_quotes(std::mem::take(&mut fix.title));
+        }
+        self.diagnostics.push(diagnostic);
     }
 
     fn push_expr(&mut self, kind: ExprKind, span: Span) -> ExprId {
@@ -1783,9 +1837,21 @@ impl<'a> Parser<'a> {
                 });
             }
             StructureKeyword::For => {
-                // `FOR CNT=1 TO 3`: the start is an assignment, the end value is the condition.
-                if !self.at_end() {
-                    self.parse_statement();
+                // `FOR CNT=1 TO 3`: the start is an assignment, the end value is the condition. Only an
+                // assignment is parsed here (never a whole statement), so `FOR FOR FOR ...` cannot recurse.
+                let counter_is_assignable = matches!(
+                    self.peek(),
+                    Some(Token::Identifier) | Some(Token::Letter) | Some(Token::SystemVariable)
+                ) && self.position < self.lexemes.len()
+                    && !self.is_keyword_here();
+                if counter_is_assignable {
+                    match self.peek() {
+                        Some(Token::Letter) if self.letter_at(self.position) == Some(b'R') => {
+                            self.parse_r_parameter_assignment()
+                        }
+                        Some(Token::SystemVariable) => self.parse_system_variable_assignment(),
+                        _ => self.parse_counter_assignment(),
+                    }
                 }
                 let mut condition = None;
                 if self.is_at(Token::Identifier) && self.upper_name(self.current_span()) == "TO" {
@@ -1870,6 +1936,30 @@ impl<'a> Parser<'a> {
                 });
             }
         }
+    }
+
+    /// Whether the name at the current position is a statement keyword or G function name.
+    fn is_keyword_here(&self) -> bool {
+        if !self.is_at(Token::Identifier) {
+            return false;
+        }
+        let upper = self.upper_name(self.current_span());
+        keywords::statement_keyword(&upper).is_some() || GCode::from_name(&upper).is_some()
+    }
+
+    /// The counter of a FOR loop: a user variable (or one-letter parameter) assigned its start value.
+    fn parse_counter_assignment(&mut self) {
+        let target_span = self.advance();
+        let value = self.parse_assignment_value(target_span, false);
+        let span = target_span.to(Span::new(self.previous_end(), self.previous_end()));
+        self.block.statements.push(Statement::Assignment {
+            target: AssignTarget::Variable {
+                indexes: Vec::new(),
+            },
+            target_span,
+            value,
+            span,
+        });
     }
 
     fn parse_condition(&mut self, keyword_span: Span) -> Option<ExprId> {
@@ -2482,6 +2572,10 @@ impl<'a> Parser<'a> {
         }
         let mut depth = 0usize;
         while !self.at_end() {
+            if depth == 0 && self.is_at(Token::Identifier) && self.jump_keyword_here().is_some() {
+                // `IF NOT NOT ... GOTOF END`: the jump is not part of the skipped expression.
+                break;
+            }
             match self.peek() {
                 Some(Token::LeftParen) | Some(Token::LeftBracket) => depth += 1,
                 Some(Token::RightParen) | Some(Token::RightBracket) | Some(Token::Comma) => {

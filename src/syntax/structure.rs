@@ -3,6 +3,11 @@
 
 use crate::diagnostics::{Code, Diagnostic, LineDiagnostic, Span};
 use crate::syntax::ast::{Block, Statement, StructureKeyword};
+use crate::syntax::parser::MAX_DIAGNOSTICS_PER_LINE;
+
+/// Deepest nesting followed. The control allows far fewer levels (commonly 16); the bound keeps a
+/// hostile line of a million `LOOP`s from costing memory and a million findings.
+const MAX_OPEN_STRUCTURES: usize = 256;
 
 /// An open structure: its keyword, line and span.
 struct Open {
@@ -16,6 +21,8 @@ struct Open {
 #[derive(Default)]
 pub struct StructureChecker {
     open: Vec<Open>,
+    /// Whether the nesting bound was reported already (once per program).
+    too_deep_reported: bool,
 }
 
 fn name(keyword: StructureKeyword) -> &'static str {
@@ -50,12 +57,28 @@ fn closer(keyword: StructureKeyword) -> Option<StructureKeyword> {
 impl StructureChecker {
     /// Feeds one block; diagnostics go to `out` with `line`.
     pub fn feed(&mut self, line: usize, block: &Block, out: &mut Vec<LineDiagnostic>) {
+        let out_before = out.len();
         for statement in block.interpreted_statements() {
+            if out.len() - out_before >= MAX_DIAGNOSTICS_PER_LINE {
+                // The parser's findings of this line are bounded the same way.
+                break;
+            }
             let Statement::Structure { keyword, span, .. } = statement else {
                 continue;
             };
             let keyword = *keyword;
             if closer(keyword).is_some() {
+                if self.open.len() >= MAX_OPEN_STRUCTURES {
+                    if !self.too_deep_reported {
+                        self.too_deep_reported = true;
+                        out.push(mismatch(
+                            line,
+                            *span,
+                            format!("control structures are nested more than {MAX_OPEN_STRUCTURES} levels deep; deeper levels are not checked"),
+                        ));
+                    }
+                    continue;
+                }
                 self.open.push(Open {
                     keyword,
                     line,
