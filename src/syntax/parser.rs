@@ -223,6 +223,11 @@ impl<'a> Parser<'a> {
             && self.span_at(index - 1).end() == self.span_at(index).start()
     }
 
+    /// From the start of `start` to the end of the last consumed token.
+    fn span_since(&self, start: Span) -> Span {
+        start.to(Span::new(self.previous_end(), self.previous_end()))
+    }
+
     fn advance(&mut self) -> Span {
         let span = self.current_span();
         if self.position < self.lexemes.len() {
@@ -699,7 +704,7 @@ impl<'a> Parser<'a> {
                     .copied()
                     .unwrap_or_else(|| self.push_expr(ExprKind::Error, index_span));
                 let value = self.parse_assignment_value(letter_span, false);
-                let span = letter_span.to(Span::new(self.previous_end(), self.previous_end()));
+                let span = self.span_since(letter_span);
                 self.block.statements.push(Statement::Assignment {
                     target: AssignTarget::GGroup { group },
                     target_span: letter_span.to(index_span),
@@ -769,7 +774,7 @@ impl<'a> Parser<'a> {
             return;
         }
         let value = self.parse_assignment_value(target_span, false);
-        let span = target_span.to(Span::new(self.previous_end(), self.previous_end()));
+        let span = self.span_since(target_span);
         self.block.statements.push(Statement::Assignment {
             target,
             target_span,
@@ -833,7 +838,7 @@ impl<'a> Parser<'a> {
         };
         let kind = self.classify_letter(letter, extension_number);
         let value = self.parse_word_value(kind, name_span, extension.is_some());
-        let span = name_span.to(Span::new(self.previous_end(), self.previous_end()));
+        let span = self.span_since(name_span);
         if kind == AddressKind::Axis {
             self.check_axis_configured(letter, extension_number, span);
         }
@@ -851,7 +856,7 @@ impl<'a> Parser<'a> {
             } else {
                 Vec::new()
             };
-            let call_span = span.to(Span::new(self.previous_end(), self.previous_end()));
+            let call_span = self.span_since(span);
             self.block.statements.push(Statement::Call {
                 kind: CallKind::Named,
                 name: Some(span),
@@ -1443,7 +1448,7 @@ impl<'a> Parser<'a> {
             target_span = name_span.to(span);
         }
         let value = self.parse_assignment_value(target_span, false);
-        let span = target_span.to(Span::new(self.previous_end(), self.previous_end()));
+        let span = self.span_since(target_span);
         let target = match r_number {
             Some(number) => AssignTarget::RParameter(number),
             None => AssignTarget::SystemVariable { indexes },
@@ -1479,7 +1484,7 @@ impl<'a> Parser<'a> {
             // `APW 11 APR 11` in a definition file sets the access levels of the definitions below.
             self.advance();
             self.advance();
-            let span = name_span.to(Span::new(self.previous_end(), self.previous_end()));
+            let span = self.span_since(name_span);
             self.block.statements.push(Statement::Instruction {
                 name: name_span,
                 args: Vec::new(),
@@ -1516,7 +1521,7 @@ impl<'a> Parser<'a> {
                         has_equals: false,
                     }
                 };
-                let span = name_span.to(Span::new(self.previous_end(), self.previous_end()));
+                let span = self.span_since(name_span);
                 self.block.statements.push(Statement::Address(AddressWord {
                     kind,
                     name: name_span,
@@ -1544,7 +1549,7 @@ impl<'a> Parser<'a> {
                 return;
             }
             let value = self.parse_assignment_value(target_span, false);
-            let span = target_span.to(Span::new(self.previous_end(), self.previous_end()));
+            let span = self.span_since(target_span);
             self.block.statements.push(Statement::Assignment {
                 target: AssignTarget::Variable { indexes },
                 target_span,
@@ -1561,7 +1566,7 @@ impl<'a> Parser<'a> {
             } else {
                 Vec::new()
             };
-            let span = name_span.to(Span::new(self.previous_end(), self.previous_end()));
+            let span = self.span_since(name_span);
             self.block.statements.push(Statement::Instruction {
                 name: name_span,
                 args,
@@ -1581,7 +1586,7 @@ impl<'a> Parser<'a> {
         } else {
             Vec::new()
         };
-        let span = name_span.to(Span::new(self.previous_end(), self.previous_end()));
+        let span = self.span_since(name_span);
         self.block.statements.push(Statement::Call {
             kind: CallKind::Named,
             name: Some(name_span),
@@ -1663,7 +1668,7 @@ impl<'a> Parser<'a> {
                 while !self.at_end() {
                     self.advance();
                 }
-                let span = keyword_span.to(Span::new(self.previous_end(), self.previous_end()));
+                let span = self.span_since(keyword_span);
                 self.block.statements.push(Statement::Instruction {
                     name: keyword_span,
                     args: Vec::new(),
@@ -1680,7 +1685,7 @@ impl<'a> Parser<'a> {
                     None
                 };
                 self.skip_balanced_rest();
-                let span = keyword_span.to(Span::new(self.previous_end(), self.previous_end()));
+                let span = self.span_since(keyword_span);
                 self.block
                     .statements
                     .push(Statement::ExternDeclaration { name, span });
@@ -1689,7 +1694,7 @@ impl<'a> Parser<'a> {
                 if self.is_at(Token::LeftParen) {
                     self.parse_argument_list();
                 }
-                let span = keyword_span.to(Span::new(self.previous_end(), self.previous_end()));
+                let span = self.span_since(keyword_span);
                 self.block.statements.push(Statement::Return { span });
             }
             StatementKeyword::Call | StatementKeyword::ExtCall => {
@@ -1714,18 +1719,7 @@ impl<'a> Parser<'a> {
                         self.advance();
                     }
                 }
-                let args = if self.is_at(Token::LeftParen) {
-                    self.parse_argument_list().0
-                } else {
-                    Vec::new()
-                };
-                let span = keyword_span.to(Span::new(self.previous_end(), self.previous_end()));
-                self.block.statements.push(Statement::Call {
-                    kind: CallKind::Indirect,
-                    name,
-                    args,
-                    span,
-                });
+                self.push_indirect_call(name, keyword_span);
             }
             StatementKeyword::PCall => {
                 // PCALL takes a path (`/_N_CMA_DIR/_N_NAME_SPF`) that is not an expression.
@@ -1738,18 +1732,7 @@ impl<'a> Parser<'a> {
                 } else {
                     None
                 };
-                let args = if self.is_at(Token::LeftParen) {
-                    self.parse_argument_list().0
-                } else {
-                    Vec::new()
-                };
-                let span = keyword_span.to(Span::new(self.previous_end(), self.previous_end()));
-                self.block.statements.push(Statement::Call {
-                    kind: CallKind::Indirect,
-                    name,
-                    args,
-                    span,
-                });
+                self.push_indirect_call(name, keyword_span);
             }
             StatementKeyword::MCall => {
                 let mut name = None;
@@ -1766,7 +1749,7 @@ impl<'a> Parser<'a> {
                     let number = self.advance();
                     name = Some(letter.to(number));
                 }
-                let span = keyword_span.to(Span::new(self.previous_end(), self.previous_end()));
+                let span = self.span_since(keyword_span);
                 self.block.statements.push(Statement::Call {
                     kind: CallKind::Modal,
                     name,
@@ -1776,7 +1759,7 @@ impl<'a> Parser<'a> {
             }
             StatementKeyword::SyncCondition => {
                 let condition = self.parse_condition(keyword_span);
-                let span = keyword_span.to(Span::new(self.previous_end(), self.previous_end()));
+                let span = self.span_since(keyword_span);
                 self.block
                     .statements
                     .push(Statement::SyncCondition { condition, span });
@@ -1804,10 +1787,26 @@ impl<'a> Parser<'a> {
                 self.block.statements.push(Statement::Instruction {
                     name: keyword_span,
                     args: Vec::new(),
-                    span: keyword_span.to(Span::new(self.previous_end(), self.previous_end())),
+                    span: self.span_since(keyword_span),
                 });
             }
         }
+    }
+
+    /// Ends a CALL, EXTCALL or PCALL statement: its optional arguments, then the statement.
+    fn push_indirect_call(&mut self, name: Option<Span>, keyword_span: Span) {
+        let args = if self.is_at(Token::LeftParen) {
+            self.parse_argument_list().0
+        } else {
+            Vec::new()
+        };
+        let span = self.span_since(keyword_span);
+        self.block.statements.push(Statement::Call {
+            kind: CallKind::Indirect,
+            name,
+            args,
+            span,
+        });
     }
 
     fn parse_structure(&mut self, keyword: StructureKeyword, keyword_span: Span) {
@@ -1820,7 +1819,7 @@ impl<'a> Parser<'a> {
                     // Several `IF ... GOTO` may follow in one block.
                     return;
                 }
-                let span = keyword_span.to(Span::new(self.previous_end(), self.previous_end()));
+                let span = self.span_since(keyword_span);
                 self.block.statements.push(Statement::Structure {
                     keyword,
                     condition,
@@ -1829,7 +1828,7 @@ impl<'a> Parser<'a> {
             }
             StructureKeyword::While | StructureKeyword::Until => {
                 let condition = self.parse_condition(keyword_span);
-                let span = keyword_span.to(Span::new(self.previous_end(), self.previous_end()));
+                let span = self.span_since(keyword_span);
                 self.block.statements.push(Statement::Structure {
                     keyword,
                     condition,
@@ -1864,7 +1863,7 @@ impl<'a> Parser<'a> {
                         "FOR needs a counter, a start value and `TO` with the end value: `FOR CNT=1 TO 10`",
                     );
                 }
-                let span = keyword_span.to(Span::new(self.previous_end(), self.previous_end()));
+                let span = self.span_since(keyword_span);
                 self.block.statements.push(Statement::Structure {
                     keyword,
                     condition,
@@ -1873,7 +1872,7 @@ impl<'a> Parser<'a> {
             }
             StructureKeyword::Case => {
                 let condition = self.parse_condition(keyword_span);
-                let span = keyword_span.to(Span::new(self.previous_end(), self.previous_end()));
+                let span = self.span_since(keyword_span);
                 self.block.statements.push(Statement::Structure {
                     keyword,
                     condition,
@@ -1918,7 +1917,7 @@ impl<'a> Parser<'a> {
                     self.block.statements.push(Statement::Instruction {
                         name: keyword_span,
                         args: Vec::new(),
-                        span: keyword_span.to(Span::new(self.previous_end(), self.previous_end())),
+                        span: self.span_since(keyword_span),
                     });
                     return;
                 }
@@ -1951,7 +1950,7 @@ impl<'a> Parser<'a> {
     fn parse_counter_assignment(&mut self) {
         let target_span = self.advance();
         let value = self.parse_assignment_value(target_span, false);
-        let span = target_span.to(Span::new(self.previous_end(), self.previous_end()));
+        let span = self.span_since(target_span);
         self.block.statements.push(Statement::Assignment {
             target: AssignTarget::Variable {
                 indexes: Vec::new(),
@@ -2123,7 +2122,7 @@ impl<'a> Parser<'a> {
         } else {
             JumpTarget::Computed(self.parse_expression())
         };
-        let span = keyword_span.to(Span::new(self.previous_end(), self.previous_end()));
+        let span = self.span_since(keyword_span);
         self.block
             .statements
             .push(Statement::Jump { kind, target, span });
@@ -2230,7 +2229,7 @@ impl<'a> Parser<'a> {
             };
             self.report(Code::ExpectedExpression, keyword_span, message);
         }
-        let span = keyword_span.to(Span::new(self.previous_end(), self.previous_end()));
+        let span = self.span_since(keyword_span);
         self.block
             .statements
             .push(Statement::Definition { names, span });
@@ -2295,7 +2294,7 @@ impl<'a> Parser<'a> {
             }
         }
         let body = Span::new(body_start.min(self.previous_end()), self.previous_end());
-        let span = keyword_span.to(Span::new(self.previous_end(), self.previous_end()));
+        let span = self.span_since(keyword_span);
         self.block
             .statements
             .push(Statement::MacroDefinition { name, body, span });
@@ -2350,7 +2349,7 @@ impl<'a> Parser<'a> {
         while !self.at_end() {
             self.advance();
         }
-        let span = keyword_span.to(Span::new(self.previous_end(), self.previous_end()));
+        let span = self.span_since(keyword_span);
         self.block.statements.push(Statement::ProcedureHeader {
             name,
             parameters,
@@ -2590,7 +2589,7 @@ impl<'a> Parser<'a> {
             }
             self.advance();
         }
-        let span = start.to(Span::new(self.previous_end(), self.previous_end()));
+        let span = self.span_since(start);
         self.push_expr(ExprKind::Error, span)
     }
 
