@@ -226,6 +226,11 @@ codes! {
     AxisNotConfigured = "S180", Warning, "An axis address that is not an axis of the configured machine.";
     StructureMismatch = "S190", Warning, "IF/ELSE/ENDIF, WHILE, FOR, REPEAT, LOOP nesting that does not match (alarm 12640).";
     TooManyDiagnostics = "S199", Information, "A line with so many findings that the rest are not shown.";
+    IncrementOnUnknownPosition = "A201", Warning, "An incremental move of an axis whose position is not known at that point, so its end point is unknown.";
+    RedundantModifier = "A202", Hint, "`=AC(..)` under G90 or `=IC(..)` under G91: the modifier changes nothing.";
+    FeedMissing = "A203", Error, "The first feed move (G1, G2, G3, CIP, CT) without a feedrate programmed (alarm 10860).";
+    FeedNotPositive = "A204", Error, "A feedrate of 0 or less (alarm 14800).";
+    DivisionByZero = "A205", Error, "A division by zero in an expression whose values are known (alarm 14051).";
 }
 
 impl fmt::Display for Code {

@@ -1,8 +1,10 @@
 //! sinumerik-lsp: a language server and command-line checker for SINUMERIK NC programs.
 //!
 //! Layers, from the bottom: `diagnostics` (shared vocabulary), `config` (machine data), `syntax`
-//! (lexer, parser, syntax diagnostics), `cli` (the command line). See ARCHITECTURE.md.
+//! (lexer, parser, syntax diagnostics), `analysis` (modal state, resolved positions, semantic
+//! diagnostics), `cli` (the command line). See ARCHITECTURE.md.
 
+pub mod analysis;
 pub mod cli;
 pub mod config;
 pub mod diagnostics;

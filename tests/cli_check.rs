@@ -7,7 +7,8 @@ use std::path::{Path, PathBuf};
 use std::process::Command;
 
 /// A program with a modifier written without parentheses: one S101 error.
-const PROGRAM_WITH_ERROR: &[u8] = b"N10 G0 Z=AC17\n";
+/// Under G91, so that `AC` is not redundant and S101 is the only finding.
+const PROGRAM_WITH_ERROR: &[u8] = b"N10 G91 G0 Z=AC17\n";
 /// A program the checker has nothing against.
 const CLEAN_PROGRAM: &[u8] = b"N10 G0 X10 Y20\nN20 G1 Z-5 F100\nN30 M30\n";
 
@@ -117,7 +118,7 @@ fn error_exits_1_in_compiler_format() {
     let header_prefix = format!("{}:1:", program.display());
     assert!(lines[0].starts_with(&header_prefix), "{}", result.stdout);
     assert!(lines[0].contains(": error[S101]: "), "{}", result.stdout);
-    assert_eq!(lines[1], "    1 | N10 G0 Z=AC17");
+    assert_eq!(lines[1], "    1 | N10 G91 G0 Z=AC17");
     assert!(
         lines[2].starts_with("      | ") && lines[2].contains('^'),
         "{}",
@@ -260,7 +261,7 @@ fn byte_order_mark_is_dropped() {
     let result = check(&[&with_bom]);
     assert!(!result.stdout.contains('\u{FEFF}'), "{}", result.stdout);
     assert!(
-        result.stdout.contains("    1 | N10 G0 Z=AC17\n"),
+        result.stdout.contains("    1 | N10 G91 G0 Z=AC17\n"),
         "{}",
         result.stdout
     );

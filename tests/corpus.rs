@@ -9,10 +9,10 @@
 //! When the corpus is not there, the tests print `corpus not found at ...; skipping` and pass.
 //! `cargo test --test corpus -- --nocapture` shows a one-line summary of the run.
 
+use sinumerik_lsp::analysis::{analyze_program, ProgramKind};
 use sinumerik_lsp::cli::source_file::read_source_file;
 use sinumerik_lsp::config::MachineConfig;
 use sinumerik_lsp::diagnostics::{Code, LineDiagnostic, Severity};
-use sinumerik_lsp::syntax::check_program;
 use sinumerik_lsp::syntax::lines::line_ranges;
 use std::collections::BTreeMap;
 use std::fmt::Write as _;
@@ -218,7 +218,13 @@ fn check_file(corpus: &Path, relative: &str) -> Outcome {
         Err(error) => return Outcome::Unreadable(error.to_string()),
     };
     let config = MachineConfig::mill();
-    match std::panic::catch_unwind(|| check_program(&source.text, &config)) {
+    // The whole analysis, as `check` runs it: syntax and the semantic findings of the modal state.
+    let kind = ProgramKind::from_extension(
+        Path::new(relative)
+            .extension()
+            .and_then(|extension| extension.to_str()),
+    );
+    match std::panic::catch_unwind(|| analyze_program(&source.text, &config, kind).diagnostics) {
         Ok(diagnostics) => Outcome::Checked {
             text: source.text,
             diagnostics,

@@ -353,8 +353,10 @@ fn every_diagnostic_code_has_an_err_fixture() {
         .iter()
         .map(|(code, _)| *code)
         .collect();
+    // Syntax codes start with S; the semantic (A) codes are covered by the analysis tests.
     let missing: Vec<&str> = Code::ALL
         .iter()
+        .filter(|code| code.as_str().starts_with('S'))
         .filter(|code| !produced.contains(*code) && !exempt.contains(code.as_str()))
         .map(|code| code.as_str())
         .collect();

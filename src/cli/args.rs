@@ -13,6 +13,21 @@ pub(crate) enum Command {
     Help,
     Version,
     Check(CheckOptions),
+    Preview(PreviewOptions),
+}
+
+/// The options of `preview`.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub(crate) struct PreviewOptions {
+    pub format: PreviewFormat,
+    pub config_path: Option<PathBuf>,
+    pub path: PathBuf,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum PreviewFormat {
+    Json,
+    Csv,
 }
 
 /// The options of `check`.
@@ -58,8 +73,9 @@ pub(crate) fn parse_args(args: impl IntoIterator<Item = OsString>) -> Result<Com
         Short('h') | Long("help") => Ok(Command::Help),
         Short('V') | Long("version") => Ok(Command::Version),
         Value(command) if command == "check" => parse_check(&mut parser),
+        Value(command) if command == "preview" => parse_preview(&mut parser),
         Value(command) => Err(UsageError(format!(
-            "unknown command {:?} (the only command is `check`)",
+            "unknown command {:?} (the commands are `check` and `preview`)",
             command.to_string_lossy()
         ))),
         other => Err(other.unexpected().into()),
@@ -104,6 +120,46 @@ fn parse_check(parser: &mut lexopt::Parser) -> Result<Command, UsageError> {
         ));
     }
     Ok(Command::Check(options))
+}
+
+fn parse_preview(parser: &mut lexopt::Parser) -> Result<Command, UsageError> {
+    let mut format = PreviewFormat::Json;
+    let mut config_path = None;
+    let mut paths = Vec::new();
+    while let Some(arg) = parser.next()? {
+        match arg {
+            Short('h') | Long("help") => return Ok(Command::Help),
+            Long("format") => {
+                let value = parser.value()?;
+                format = match value.to_str() {
+                    Some("json") => PreviewFormat::Json,
+                    Some("csv") => PreviewFormat::Csv,
+                    _ => {
+                        return Err(UsageError(format!(
+                            "unknown format {:?} for --format (expected json or csv)",
+                            value.to_string_lossy()
+                        )))
+                    }
+                };
+            }
+            Long("config") => config_path = Some(PathBuf::from(parser.value()?)),
+            Value(path) => paths.push(PathBuf::from(path)),
+            other => return Err(other.unexpected().into()),
+        }
+    }
+    match paths.len() {
+        1 => Ok(Command::Preview(PreviewOptions {
+            format,
+            config_path,
+            path: paths.remove(0),
+        })),
+        0 => Err(UsageError(
+            "`preview` needs the program file to preview".to_string(),
+        )),
+        _ => Err(UsageError(
+            "`preview` takes exactly one program file".to_string(),
+        )),
+    }
 }
 
 /// Reads `mpf,spf` (a leading dot is tolerated, `.mpf`, because that is how people often write

@@ -87,7 +87,11 @@ pub(crate) fn run_check(
         n_checked_files += 1;
 
         // The checker returns the diagnostics sorted by line and column, the order people read in.
-        let line_diagnostics = crate::syntax::check_program(&source.text, &config);
+        let kind = crate::analysis::ProgramKind::from_extension(
+            path.extension().and_then(|extension| extension.to_str()),
+        );
+        let line_diagnostics =
+            crate::analysis::analyze_program(&source.text, &config, kind).diagnostics;
         let lines = ProgramLines::new(&source.text);
         let path_text = path.display().to_string();
         for line_diagnostic in &line_diagnostics {

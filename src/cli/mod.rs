@@ -23,6 +23,7 @@
 
 mod args;
 mod check;
+mod preview;
 mod report;
 pub mod source_file;
 
@@ -40,6 +41,8 @@ pub const EXIT_TROUBLE: u8 = 2;
 const USAGE: &str = "\
 Usage:
   sinumerik-lsp check [OPTIONS] PATH...  check programs (folders recursively)
+  sinumerik-lsp preview [--format json|csv] [--config FILE] FILE
+                                         the resolved end point of every move
   sinumerik-lsp --help                   show this help
   sinumerik-lsp --version                show the version
 
@@ -91,6 +94,7 @@ pub fn run_with_output(
         Command::Help => write!(stdout, "{}\n\n{USAGE}", version_line()).map(|()| EXIT_OK),
         Command::Version => writeln!(stdout, "{}", version_line()).map(|()| EXIT_OK),
         Command::Check(options) => check::run_check(&options, stdout, stderr),
+        Command::Preview(options) => preview::run_preview(&options, stdout, stderr),
     };
     match result.and_then(|exit_code| stdout.flush().map(|()| exit_code)) {
         Ok(exit_code) => exit_code,

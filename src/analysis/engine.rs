@@ -1,0 +1,557 @@
+//! Applies one parsed block to the modal state, the way the control's interpreter does, and describes
+//! the resulting move. What this engine does not model yet (programmable frames for machine
+//! coordinates, polar moves, calls of subprograms, jumps) turns the affected values into "unknown" or
+//! "uncertain": it never shows a number it cannot stand behind.
+
+use crate::analysis::eval::{evaluate, EvalError, Variables};
+use crate::analysis::state::ModalState;
+use crate::config::{AxisKind, MachineConfig};
+use crate::diagnostics::{Code, Diagnostic};
+use crate::syntax::ast::*;
+use crate::syntax::gcodes::GCode;
+
+/// A block that moves axes.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Move {
+    /// 0-based line of the block.
+    pub line: usize,
+    /// The block number as written (`N20`), if any.
+    pub block_number: Option<String>,
+    /// The motion G function in effect (`G0`, `G1`, `G2`, ...).
+    pub motion: String,
+    /// Axis values before the block, as the program shows them (a diameter under DIAMON); unknown
+    /// axes are left out.
+    pub start: Vec<(String, f64)>,
+    /// Axis values after the block, as the program shows them; unknown axes are left out.
+    pub end: Vec<(String, f64)>,
+    /// Machine coordinates (radius on transverse axes) when they are known, i.e. when no offset or
+    /// frame whose value is unknown is active.
+    pub machine: Option<Vec<(String, f64)>>,
+    /// The modal feed in the basic unit system, if known.
+    pub feed: Option<f64>,
+    /// Axes whose value is unknown or depends on the program's flow (jumps, loops).
+    pub uncertain: Vec<String>,
+}
+
+/// Interprets blocks one after the other.
+pub struct Engine<'a> {
+    config: &'a MachineConfig,
+    pub state: ModalState,
+    /// Set once a jump or control structure has been passed: evaluation in program order may no longer
+    /// match the control's path through the program.
+    flow_uncertain: bool,
+    /// Whether a feed move without F has already been reported (alarm 10860 is reported once).
+    missing_feed_reported: bool,
+}
+
+/// The non-modal G functions of one block that change what its axis words mean.
+#[derive(Default)]
+struct BlockFunctions {
+    frame_or_pole: Option<GCode>,
+    dwell: bool,
+    machine_coordinates: bool,
+    reference_point: bool,
+}
+
+impl<'a> Engine<'a> {
+    pub fn new(config: &'a MachineConfig) -> Engine<'a> {
+        Engine {
+            config,
+            state: ModalState::reset(config),
+            flow_uncertain: false,
+            missing_feed_reported: false,
+        }
+    }
+
+    /// The state comes from a caller the engine cannot see: a feed may be active, so a feed move without
+    /// F is not reported.
+    pub fn assume_inherited_state(&mut self) {
+        self.missing_feed_reported = true;
+    }
+
+    /// Applies `block` (the parsed form of `line`, line number `line_index`) and returns its move, if
+    /// it moves axes. Semantic findings go to `diagnostics`.
+    pub fn apply(
+        &mut self,
+        line_index: usize,
+        line: &str,
+        block: &Block,
+        diagnostics: &mut Vec<Diagnostic>,
+    ) -> Option<Move> {
+        if block.is_header {
+            return None;
+        }
+        let statements = block.interpreted_statements();
+        // A label may be the target of a backward jump and a structure keyword opens a loop or branch:
+        // from here on the control may run blocks again or skip them, so values assigned from here on
+        // (this block included) are not followed in program order.
+        if block.label.is_some()
+            || statements.iter().any(|statement| {
+                matches!(
+                    statement,
+                    Statement::Jump { .. } | Statement::Structure { .. }
+                )
+            })
+        {
+            self.flow_uncertain = true;
+        }
+        let mut functions = BlockFunctions::default();
+        let mut forget_for_frames = false;
+        for statement in statements {
+            if let Statement::GCode { code, .. } = statement {
+                if code.is_modal() {
+                    self.state.set_modal(*code);
+                    // PAROT, TOROT and TOFRAME turn the coordinate system with the table or the tool:
+                    // positions are unknown afterwards (reference §7.5).
+                    if matches!(code.group(), 52 | 53) && !code.name().ends_with("OF") {
+                        forget_for_frames = true;
+                    }
+                } else {
+                    match code.group() {
+                        3 => functions.frame_or_pole = Some(*code),
+                        2 if code.is_dwell() => functions.dwell = true,
+                        2 => functions.reference_point = true,
+                        9 => functions.machine_coordinates = true,
+                        _ => {}
+                    }
+                }
+            }
+        }
+        let start_positions = self.state.positions.clone();
+        let mut moved = false;
+        let mut unknown_reasons = false;
+        let mut feed_in_block = None;
+        let mut polar = false;
+        let mut forget_after = forget_for_frames;
+        for statement in statements {
+            match statement {
+                Statement::Address(word) => match word.kind {
+                    AddressKind::Axis => {
+                        if functions.frame_or_pole.is_some() || functions.dwell {
+                            continue;
+                        }
+                        moved = true;
+                        if !self.apply_axis_word(line, block, word, &functions, diagnostics) {
+                            unknown_reasons = true;
+                        }
+                    }
+                    AddressKind::Feed if !functions.dwell => {
+                        feed_in_block = Some(self.word_value(line, block, word, diagnostics));
+                    }
+                    AddressKind::Named(NamedAddress::PolarAngle | NamedAddress::PolarRadius)
+                        if functions.frame_or_pole.is_none() =>
+                    {
+                        polar = true;
+                    }
+                    AddressKind::MFunction => {
+                        // A tool change (M6) may run a machine-specific cycle that moves axes.
+                        let value = self.word_value(line, block, word, diagnostics);
+                        if word.extension.is_none() && value == Some(6.0) {
+                            forget_after = true;
+                        }
+                    }
+                    _ => {}
+                },
+                Statement::Assignment {
+                    target,
+                    target_span,
+                    value,
+                    ..
+                } => {
+                    self.apply_assignment(line, block, target, *target_span, *value, diagnostics);
+                }
+                Statement::Definition { names, span } => {
+                    // LUD variables start at zero; an initial value is not followed yet.
+                    let initialised = line[span.start()..span.end()].contains('=');
+                    for name in names {
+                        let upper = line[name.start()..name.end()].to_ascii_uppercase();
+                        let value = if initialised || self.flow_uncertain {
+                            None
+                        } else {
+                            Some(0.0)
+                        };
+                        self.state.variables.set_variable(&upper, value);
+                    }
+                }
+                Statement::Call { kind, .. } if *kind != CallKind::Modal => {
+                    forget_after = true;
+                }
+                Statement::Instruction { name, .. } => {
+                    let upper = line[name.start()..name.end()].to_ascii_uppercase();
+                    if changes_kinematics(&upper) {
+                        forget_after = true;
+                    }
+                }
+                _ => {}
+            }
+        }
+        if let Some(code) = functions.frame_or_pole {
+            self.apply_frame_instruction(code, statements);
+        }
+        if polar {
+            // Polar moves are not followed yet: the plane axes become unknown.
+            moved = true;
+            unknown_reasons = true;
+            for index in self.plane_axis_indexes() {
+                self.state.positions[index] = None;
+                self.state.touched[index] = true;
+            }
+        }
+        if let Some(feed) = feed_in_block {
+            match feed {
+                Some(value) => {
+                    if value <= 0.0 {
+                        if let Some(word) = find_word(statements, AddressKind::Feed) {
+                            diagnostics.push(Diagnostic::new(
+                                Code::FeedNotPositive,
+                                word.span,
+                                "the feedrate must be greater than 0 (alarm 14800)",
+                            ));
+                        }
+                    }
+                    self.state.feed = Some(value * self.state.feed_factor(self.config.metric));
+                }
+                None => self.state.feed = None,
+            }
+        }
+        let motion = self.state.active_name(1);
+        if moved && functions.frame_or_pole.is_none() && !functions.dwell {
+            self.check_feed(&motion, statements, diagnostics);
+        }
+        let result = (moved && functions.frame_or_pole.is_none() && !functions.dwell).then(|| {
+            self.describe_move(
+                line_index,
+                line,
+                block,
+                &start_positions,
+                &motion,
+                unknown_reasons,
+            )
+        });
+        if forget_after {
+            // The callee may have programmed a feed, so a later feed move without F is not reported.
+            self.missing_feed_reported = true;
+            self.state.forget_positions();
+            self.state.variables.forget_all();
+            self.state.frame_is_identity = false;
+        }
+        result
+    }
+
+    /// Applies one axis word; returns false when the axis became unknown.
+    fn apply_axis_word(
+        &mut self,
+        line: &str,
+        block: &Block,
+        word: &AddressWord,
+        functions: &BlockFunctions,
+        diagnostics: &mut Vec<Diagnostic>,
+    ) -> bool {
+        let name = axis_name(line, word);
+        let Some(index) = self
+            .config
+            .axes
+            .iter()
+            .position(|axis| axis.name.eq_ignore_ascii_case(&name))
+        else {
+            // Not a configured axis: the syntax layer reported it; nothing to track.
+            return true;
+        };
+        self.state.touched[index] = true;
+        let kind = self.config.axes[index].kind;
+        let modifier = word.value.modifier.map(|(modifier, _)| modifier);
+        let absolute = match modifier {
+            Some(Modifier::Ic | Modifier::Dic | Modifier::Ric | Modifier::Cic) => false,
+            Some(_) => true,
+            None => !self.state.is_incremental(),
+        };
+        if let Some((modifier, modifier_span)) = word.value.modifier {
+            let redundant = match modifier {
+                Modifier::Ac => !self.state.is_incremental(),
+                Modifier::Ic => self.state.is_incremental(),
+                _ => false,
+            };
+            if redundant {
+                let active = if self.state.is_incremental() {
+                    "G91"
+                } else {
+                    "G90"
+                };
+                diagnostics.push(Diagnostic::new(
+                    Code::RedundantModifier,
+                    modifier_span,
+                    format!(
+                        "{} is redundant here: {active} already reads `{name}` this way",
+                        modifier.as_str()
+                    ),
+                ));
+            }
+        }
+        let value = self.word_value(line, block, word, diagnostics);
+        let Some(mut value) = value else {
+            self.state.positions[index] = None;
+            return false;
+        };
+        if matches!(kind, AxisKind::Linear | AxisKind::Transverse) {
+            value *= self.state.length_factor(self.config.metric);
+        }
+        if kind == AxisKind::Transverse {
+            let is_diameter = match modifier {
+                Some(Modifier::Dac | Modifier::Dic) => true,
+                Some(Modifier::Rac | Modifier::Ric) => false,
+                _ => {
+                    let (absolute_diameter, incremental_diameter) = self.state.diameter_mode();
+                    if absolute {
+                        absolute_diameter
+                    } else {
+                        incremental_diameter
+                    }
+                }
+            };
+            if is_diameter {
+                value /= 2.0;
+            }
+        }
+        if functions.machine_coordinates || functions.reference_point {
+            // G53/G153/SUPA values are machine positions; G74/G75 approach machine-defined points.
+            let known =
+                functions.machine_coordinates && self.state.machine_equals_programmed() && absolute;
+            self.state.positions[index] = known.then_some(value);
+            return known;
+        }
+        let target = if absolute {
+            Some(value)
+        } else {
+            match self.state.positions[index] {
+                Some(previous) => Some(previous + value),
+                None => {
+                    diagnostics.push(Diagnostic::new(
+                        Code::IncrementOnUnknownPosition,
+                        word.span,
+                        format!("`{name}` moves incrementally, but its position is not known here, so the end point is unknown"),
+                    ));
+                    None
+                }
+            }
+        };
+        self.state.positions[index] = target;
+        target.is_some()
+    }
+
+    /// The value of a word's expression (constant or evaluated), or `None` when unknown.
+    fn word_value(
+        &self,
+        line: &str,
+        block: &Block,
+        word: &AddressWord,
+        diagnostics: &mut Vec<Diagnostic>,
+    ) -> Option<f64> {
+        match word.value.expr {
+            ValueExpr::Missing => None,
+            ValueExpr::Constant { value, .. } => Some(value),
+            ValueExpr::Expr(id) => {
+                evaluate_or_report(block, line, id, &self.state.variables, diagnostics)
+            }
+        }
+    }
+
+    fn apply_assignment(
+        &mut self,
+        line: &str,
+        block: &Block,
+        target: &AssignTarget,
+        target_span: crate::diagnostics::Span,
+        value: Option<ExprId>,
+        diagnostics: &mut Vec<Diagnostic>,
+    ) {
+        let evaluated = value
+            .and_then(|id| evaluate_or_report(block, line, id, &self.state.variables, diagnostics));
+        // After a jump or inside a control structure the assignment may run any number of times.
+        let evaluated = if self.flow_uncertain { None } else { evaluated };
+        match target {
+            AssignTarget::RParameter(number) => {
+                self.state.variables.set_r_parameter(*number, evaluated)
+            }
+            AssignTarget::Variable { indexes } if indexes.is_empty() => {
+                let name = line[target_span.start()..target_span.end()].to_ascii_uppercase();
+                self.state.variables.set_variable(&name, evaluated);
+            }
+            _ => {}
+        }
+    }
+
+    fn apply_frame_instruction(&mut self, code: GCode, statements: &[Statement]) {
+        let name = code.name();
+        match name.as_ref() {
+            // TRANS without axes clears the whole programmable frame.
+            "TRANS" | "ROT" | "SCALE" | "MIRROR" => {
+                let has_values = statements.iter().any(|statement| {
+                    matches!(statement, Statement::Address(word) if matches!(word.kind, AddressKind::Axis | AddressKind::Named(_)))
+                });
+                self.state.frame_is_identity = !has_values;
+            }
+            "ATRANS" | "AROT" | "ASCALE" | "AMIRROR" | "ROTS" | "AROTS" | "G58" | "G59" => {
+                self.state.frame_is_identity = false;
+            }
+            // Poles and working-area limits do not move the coordinate system.
+            _ => {}
+        }
+    }
+
+    fn plane_axis_indexes(&self) -> Vec<usize> {
+        let names: [&str; 2] = match self.state.active_name(6).as_str() {
+            "G18" => ["Z", "X"],
+            "G19" => ["Y", "Z"],
+            _ => ["X", "Y"],
+        };
+        names
+            .iter()
+            .filter_map(|name| {
+                self.config
+                    .axes
+                    .iter()
+                    .position(|axis| axis.name.eq_ignore_ascii_case(name))
+            })
+            .collect()
+    }
+
+    /// G1/G2/G3 need a feed (alarm 10860); reported once, at the first feed move without one.
+    fn check_feed(
+        &mut self,
+        motion: &str,
+        statements: &[Statement],
+        diagnostics: &mut Vec<Diagnostic>,
+    ) {
+        let needs_feed = matches!(motion, "G1" | "G2" | "G3" | "CIP" | "CT");
+        if !needs_feed || self.state.feed.is_some() || self.missing_feed_reported {
+            return;
+        }
+        let span = statements
+            .iter()
+            .find(|statement| matches!(statement, Statement::Address(word) if word.kind == AddressKind::Axis))
+            .map(Statement::span)
+            .unwrap_or_default();
+        self.missing_feed_reported = true;
+        diagnostics.push(Diagnostic::new(
+            Code::FeedMissing,
+            span,
+            format!("{motion} moves at the programmed feed, but no F has been programmed yet (alarm 10860)"),
+        ));
+    }
+
+    fn describe_move(
+        &self,
+        line_index: usize,
+        line: &str,
+        block: &Block,
+        start_positions: &[Option<f64>],
+        motion: &str,
+        _some_unknown: bool,
+    ) -> Move {
+        let shows_diameter = self.state.shows_diameter();
+        let display = |index: usize, value: f64| {
+            if shows_diameter && self.config.axes[index].kind == AxisKind::Transverse {
+                value * 2.0
+            } else {
+                value
+            }
+        };
+        let mut start = Vec::new();
+        let mut end = Vec::new();
+        let mut uncertain = Vec::new();
+        for (index, axis) in self.config.axes.iter().enumerate() {
+            if !self.state.touched[index] {
+                continue;
+            }
+            if let Some(value) = start_positions[index] {
+                start.push((axis.name.clone(), display(index, value)));
+            }
+            match self.state.positions[index] {
+                Some(value) => {
+                    end.push((axis.name.clone(), display(index, value)));
+                    if self.flow_uncertain {
+                        uncertain.push(axis.name.clone());
+                    }
+                }
+                None => uncertain.push(axis.name.clone()),
+            }
+        }
+        let machine = self.state.machine_equals_programmed().then(|| {
+            self.config
+                .axes
+                .iter()
+                .enumerate()
+                .filter_map(|(index, axis)| {
+                    let value = self.state.positions[index]?;
+                    self.state.touched[index].then(|| (axis.name.clone(), value))
+                })
+                .collect()
+        });
+        let block_number = block
+            .number
+            .map(|number| line[number.span.start()..number.span.end()].to_string());
+        Move {
+            line: line_index,
+            block_number,
+            motion: motion.to_string(),
+            start,
+            end,
+            machine,
+            feed: self.state.feed,
+            uncertain,
+        }
+    }
+}
+
+fn evaluate_or_report(
+    block: &Block,
+    line: &str,
+    id: ExprId,
+    variables: &Variables,
+    diagnostics: &mut Vec<Diagnostic>,
+) -> Option<f64> {
+    match evaluate(block, line, id, variables) {
+        Ok(value) => value,
+        Err(EvalError::DivisionByZero(span)) => {
+            diagnostics.push(Diagnostic::new(
+                Code::DivisionByZero,
+                span,
+                "division by zero (alarm 14051)",
+            ));
+            None
+        }
+    }
+}
+
+/// The axis name of a word: the letter and its numeric extension (`X`, `X1`), or the whole name.
+fn axis_name(line: &str, word: &AddressWord) -> String {
+    let mut name = line[word.name.start()..word.name.end()].to_ascii_uppercase();
+    if let Some(Extension::Number { value, .. }) = &word.extension {
+        name.push_str(&value.to_string());
+    }
+    name
+}
+
+fn find_word(statements: &[Statement], kind: AddressKind) -> Option<&AddressWord> {
+    statements.iter().find_map(|statement| match statement {
+        Statement::Address(word) if word.kind == kind => Some(word),
+        _ => None,
+    })
+}
+
+/// Instructions after which machine positions cannot be followed (reference §7.5).
+fn changes_kinematics(upper: &str) -> bool {
+    matches!(
+        upper,
+        "TRAORI"
+            | "TRANSMIT"
+            | "TRACYL"
+            | "TRAANG"
+            | "TRACON"
+            | "TCARR"
+            | "PAROT"
+            | "TOROT"
+            | "TOFRAME"
+            | "TRAFOOF"
+    )
+}

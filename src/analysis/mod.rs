@@ -1,0 +1,93 @@
+//! The analysis layer: the modal state of every block and the resolved end points of every move, with
+//! semantic diagnostics. No IO and no protocol types: text and configuration in, plain values out.
+//!
+//! What is followed today: G groups, G90/G91 with `=AC`/`=IC`, inch/metric (G70/G71/G700/G710),
+//! diameter programming (DIAMOF/DIAMON/DIAM90 and DAC/DIC/RAC/RIC), R parameters and DEF variables,
+//! feed. What is not followed yet turns values into "unknown" (programmable frames and work offsets for
+//! machine coordinates, polar moves, calls of subprograms and cycles, transformations) or "uncertain"
+//! (everything after a jump or control structure, because the engine evaluates in program order).
+
+pub mod engine;
+pub mod eval;
+pub mod state;
+
+pub use engine::{Engine, Move};
+
+use crate::config::MachineConfig;
+use crate::diagnostics::LineDiagnostic;
+use crate::syntax::{lines, Block, LineParser, SyntaxContext};
+
+/// Everything the analysis finds in a program.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Analysis {
+    pub moves: Vec<Move>,
+    /// Syntax and semantic diagnostics, sorted by line and column, with the configured severities.
+    pub diagnostics: Vec<LineDiagnostic>,
+}
+
+/// Whether a program runs on its own (a main program, `.MPF`) or is called (a subprogram, `.SPF`): a
+/// subprogram inherits the caller's modal state, feed included.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum ProgramKind {
+    Main,
+    Subprogram,
+}
+
+impl ProgramKind {
+    /// The kind by file extension: only `mpf` is known to be a main program. Anything else (`spf`,
+    /// contour files such as `drs`, text files) may be called with the caller's modal state, so it is
+    /// treated as a subprogram: findings that need the reset state are not reported there.
+    pub fn from_extension(extension: Option<&str>) -> ProgramKind {
+        match extension {
+            Some(extension) if extension.eq_ignore_ascii_case("mpf") => ProgramKind::Main,
+            _ => ProgramKind::Subprogram,
+        }
+    }
+}
+
+/// Parses and interprets a whole main program.
+pub fn analyze(text: &str, config: &MachineConfig) -> Analysis {
+    analyze_program(text, config, ProgramKind::Main)
+}
+
+/// Parses and interprets a whole program of the given kind.
+pub fn analyze_program(text: &str, config: &MachineConfig, kind: ProgramKind) -> Analysis {
+    let mut diagnostics = crate::syntax::check_program(text, config);
+    let mut context = SyntaxContext::new(config);
+    for name in crate::syntax::macro_names(text) {
+        context.add_macro(name);
+    }
+    let mut parser = LineParser::new();
+    let mut block = Block::default();
+    let mut syntax_diagnostics = Vec::new();
+    let mut semantic = Vec::new();
+    let mut engine = Engine::new(config);
+    // A subprogram (or a program with a PROC header) starts with the caller's feed, unknown here.
+    let is_subprogram = kind == ProgramKind::Subprogram
+        || lines::line_ranges(text).any(|(start, end)| {
+            text[start..end]
+                .trim_start()
+                .get(..4)
+                .is_some_and(|word| word.eq_ignore_ascii_case("PROC"))
+        });
+    if is_subprogram {
+        engine.assume_inherited_state();
+    }
+    let mut moves = Vec::new();
+    for (line_index, (start, end)) in lines::line_ranges(text).enumerate() {
+        let line = &text[start..end];
+        parser.parse(line, &context, &mut block, &mut syntax_diagnostics);
+        if let Some(movement) = engine.apply(line_index, line, &block, &mut semantic) {
+            moves.push(movement);
+        }
+        diagnostics.extend(semantic.drain(..).map(|mut diagnostic| {
+            diagnostic.severity = config.severity_of(diagnostic.code);
+            LineDiagnostic {
+                line: line_index,
+                diagnostic,
+            }
+        }));
+    }
+    diagnostics.sort_by_key(|item| (item.line, item.diagnostic.span.start()));
+    Analysis { moves, diagnostics }
+}

@@ -1,0 +1,225 @@
+//! The modal state the control carries from block to block: active G functions by group, the last
+//! programmed position of every axis (or unknown), feed, variables, and what is known about frames.
+
+use crate::analysis::eval::Variables;
+use crate::config::{AxisKind, MachineConfig};
+use crate::syntax::gcodes::GCode;
+
+/// Number of G groups tracked (the highest group number in the table is below this).
+pub const GROUP_COUNT: usize = 64;
+
+/// The modal state in effect between two blocks.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ModalState {
+    /// The active G function of each group, by group number; `None` for groups without a modal value.
+    pub groups: [Option<GCode>; GROUP_COUNT],
+    /// The last programmed position of each configured axis (same order as the configuration), in the
+    /// basic unit system and as a radius on transverse axes. `None` is unknown.
+    pub positions: Vec<Option<f64>>,
+    /// Whether an axis has been programmed or otherwise affected, so that previews leave out axes a
+    /// program never uses.
+    pub touched: Vec<bool>,
+    /// The modal feed in the basic unit system (`None` until programmed).
+    pub feed: Option<f64>,
+    /// Known values of R parameters and user variables.
+    pub variables: Variables,
+    /// Whether the programmable frame is known to be empty, so that machine coordinates equal the
+    /// programmed ones (together with G500 and no tool offset). Frame instructions the engine does not
+    /// follow yet make it false.
+    pub frame_is_identity: bool,
+}
+
+/// Siemens defaults of the G groups (reference §2.2), before the machine's MD20150 values.
+const SIEMENS_RESET: &[&str] = &[
+    "G1",
+    "G17",
+    "G40",
+    "G500",
+    "G60",
+    "G601",
+    "G71",
+    "G90",
+    "G94",
+    "DIAMOF",
+    "RTLION",
+    "STARTFIFO",
+    "CFC",
+    "NORM",
+    "G450",
+    "BNAT",
+    "ENAT",
+    "BRISK",
+    "CUT2D",
+    "CDOF",
+    "FFWOF",
+    "ORIWKS",
+    "RMI",
+    "ORIC",
+    "WALIMON",
+    "COMPOF",
+    "G290",
+    "PAROTOF",
+    "TOROTOF",
+];
+
+/// Looks up a G function by its written name: `G18`, `G01` or `DIAMON`.
+pub fn gcode_by_written_name(name: &str) -> Option<GCode> {
+    let upper = name.trim().to_ascii_uppercase();
+    if let Some(digits) = upper.strip_prefix('G') {
+        if !digits.is_empty() && digits.bytes().all(|byte| byte.is_ascii_digit()) {
+            return digits.parse().ok().and_then(GCode::from_number);
+        }
+    }
+    GCode::from_name(&upper)
+}
+
+impl ModalState {
+    /// The state after reset on this machine (MD20150), with every position unknown.
+    pub fn reset(config: &MachineConfig) -> ModalState {
+        let mut state = ModalState {
+            groups: [None; GROUP_COUNT],
+            positions: vec![None; config.axes.len()],
+            touched: vec![false; config.axes.len()],
+            feed: None,
+            variables: Variables::default(),
+            frame_is_identity: true,
+        };
+        for name in SIEMENS_RESET {
+            if let Some(code) = gcode_by_written_name(name) {
+                state.set_modal(code);
+            }
+        }
+        if !config.metric {
+            if let Some(code) = gcode_by_written_name("G70") {
+                state.set_modal(code);
+            }
+        }
+        for name in &config.reset_gcodes {
+            if let Some(code) = gcode_by_written_name(name) {
+                if code.is_modal() {
+                    state.set_modal(code);
+                }
+            }
+        }
+        state
+    }
+
+    pub fn set_modal(&mut self, code: GCode) {
+        let group = code.group() as usize;
+        if group < GROUP_COUNT {
+            self.groups[group] = Some(code);
+        }
+    }
+
+    /// The active function of a group, by its canonical name (`"G90"`), or `""`.
+    pub fn active_name(&self, group: usize) -> String {
+        self.groups
+            .get(group)
+            .copied()
+            .flatten()
+            .map(|code| code.name().into_owned())
+            .unwrap_or_default()
+    }
+
+    fn active_is(&self, group: usize, name: &str) -> bool {
+        self.groups
+            .get(group)
+            .copied()
+            .flatten()
+            .is_some_and(|code| code.name() == name)
+    }
+
+    pub fn is_incremental(&self) -> bool {
+        self.active_is(14, "G91")
+    }
+
+    /// G70 or G700 on a metric machine, G71 or G710 on an inch machine: lengths need converting.
+    pub fn length_factor(&self, metric_machine: bool) -> f64 {
+        let inch_programmed = self.active_is(13, "G70") || self.active_is(13, "G700");
+        match (metric_machine, inch_programmed) {
+            (true, true) => 25.4,
+            (false, false) => 1.0 / 25.4,
+            _ => 1.0,
+        }
+    }
+
+    /// G700/G710 also convert the feed.
+    pub fn feed_factor(&self, metric_machine: bool) -> f64 {
+        match (
+            metric_machine,
+            self.active_is(13, "G700"),
+            self.active_is(13, "G710"),
+        ) {
+            (true, true, _) => 25.4,
+            (false, _, true) => 1.0 / 25.4,
+            _ => 1.0,
+        }
+    }
+
+    /// How the transverse axis reads values: (absolute values are diameters, incremental values are
+    /// diameters), by the modal group 29 (reference §3.7).
+    pub fn diameter_mode(&self) -> (bool, bool) {
+        if self.active_is(29, "DIAMON") {
+            (true, true)
+        } else if self.active_is(29, "DIAM90") {
+            (true, false)
+        } else {
+            (false, false)
+        }
+    }
+
+    /// Whether the position display shows the transverse axis as a diameter.
+    pub fn shows_diameter(&self) -> bool {
+        self.active_is(29, "DIAMON") || self.active_is(29, "DIAM90")
+    }
+
+    /// Whether machine coordinates equal programmed ones: no settable offset (G500), no programmable
+    /// frame. Offset values are machine data the program does not contain.
+    pub fn machine_equals_programmed(&self) -> bool {
+        self.frame_is_identity && self.active_is(8, "G500")
+    }
+
+    /// Every axis position becomes unknown: a subprogram, cycle or transformation the engine cannot see
+    /// may have moved anything.
+    pub fn forget_positions(&mut self) {
+        for (position, touched) in self.positions.iter_mut().zip(&mut self.touched) {
+            if position.is_some() {
+                *touched = true;
+            }
+            *position = None;
+        }
+    }
+}
+
+/// The kind of the axis at `index` of the configuration.
+pub fn axis_kind(config: &MachineConfig, index: usize) -> AxisKind {
+    config.axes[index].kind
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn reset_follows_the_machine_kind() {
+        let mill = ModalState::reset(&MachineConfig::mill());
+        assert_eq!(mill.active_name(6), "G17");
+        assert_eq!(mill.active_name(14), "G90");
+        assert_eq!(mill.active_name(29), "DIAMOF");
+        assert!(mill.positions.iter().all(Option::is_none));
+        let turn = ModalState::reset(&MachineConfig::turn());
+        assert_eq!(turn.active_name(6), "G18");
+        assert_eq!(turn.active_name(29), "DIAMON");
+    }
+
+    #[test]
+    fn units_convert_lengths_and_feeds() {
+        let mut state = ModalState::reset(&MachineConfig::mill());
+        assert_eq!(state.length_factor(true), 1.0);
+        state.set_modal(gcode_by_written_name("G70").unwrap());
+        assert_eq!(state.length_factor(true), 25.4);
+        assert_eq!(state.feed_factor(true), 1.0);
+        state.set_modal(gcode_by_written_name("G700").unwrap());
+        assert_eq!(state.feed_factor(true), 25.4);
+    }
+}

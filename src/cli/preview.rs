@@ -1,0 +1,155 @@
+//! `preview`: the resolved moves of one program as JSON or CSV, for tools and for the toolpath view.
+
+use super::args::{PreviewFormat, PreviewOptions};
+use super::report::ProgramLines;
+use super::source_file::read_source_file;
+use super::{EXIT_ERRORS_FOUND, EXIT_OK, EXIT_TROUBLE};
+use crate::analysis::{analyze_program, Move, ProgramKind};
+use crate::config::{discover_config_file, load_config_file, MachineConfig};
+use crate::diagnostics::Severity;
+use serde_json::{json, Map, Value};
+use std::io::{self, Write};
+use std::path::Path;
+
+pub(crate) fn run_preview(
+    options: &PreviewOptions,
+    stdout: &mut dyn Write,
+    stderr: &mut dyn Write,
+) -> io::Result<u8> {
+    let config = match config_for(options) {
+        Ok(config) => config,
+        Err(message) => {
+            writeln!(stderr, "sinumerik-lsp: {message}")?;
+            return Ok(EXIT_TROUBLE);
+        }
+    };
+    let source = match read_source_file(&options.path) {
+        Ok(source) => source,
+        Err(io_error) => {
+            writeln!(
+                stderr,
+                "sinumerik-lsp: {}: {io_error}",
+                options.path.display()
+            )?;
+            return Ok(EXIT_TROUBLE);
+        }
+    };
+    let kind = ProgramKind::from_extension(
+        options
+            .path
+            .extension()
+            .and_then(|extension| extension.to_str()),
+    );
+    let analysis = analyze_program(&source.text, &config, kind);
+    match options.format {
+        PreviewFormat::Json => {
+            let lines = ProgramLines::new(&source.text);
+            let diagnostics: Vec<Value> = analysis
+                .diagnostics
+                .iter()
+                .map(|item| {
+                    let (column, end_column) = lines.columns(item.line, item.diagnostic.span);
+                    json!({
+                        "line": item.line + 1,
+                        "column": column,
+                        "end_column": end_column,
+                        "severity": item.diagnostic.severity.as_str(),
+                        "code": item.diagnostic.code.as_str(),
+                        "message": item.diagnostic.message,
+                    })
+                })
+                .collect();
+            let document = json!({
+                "file": options.path.display().to_string(),
+                "units": if config.metric { "mm" } else { "inch" },
+                "moves": analysis.moves.iter().map(move_json).collect::<Vec<_>>(),
+                "diagnostics": diagnostics,
+            });
+            serde_json::to_writer_pretty(&mut *stdout, &document)?;
+            writeln!(stdout)?;
+        }
+        PreviewFormat::Csv => write_csv(stdout, &config, &analysis.moves)?,
+    }
+    let has_errors = analysis
+        .diagnostics
+        .iter()
+        .any(|item| item.diagnostic.severity == Severity::Error);
+    Ok(if has_errors {
+        EXIT_ERRORS_FOUND
+    } else {
+        EXIT_OK
+    })
+}
+
+fn config_for(options: &PreviewOptions) -> Result<MachineConfig, String> {
+    let path = match &options.config_path {
+        Some(path) => Some(path.clone()),
+        None => discover_config_file(options.path.parent().unwrap_or(Path::new("."))),
+    };
+    match path {
+        Some(path) => load_config_file(&path).map_err(|error| error.to_string()),
+        None => Ok(MachineConfig::default()),
+    }
+}
+
+fn axes_json(values: &[(String, f64)]) -> Value {
+    let mut map = Map::new();
+    for (name, value) in values {
+        map.insert(name.clone(), json!(round(*value)));
+    }
+    Value::Object(map)
+}
+
+/// Rounds away floating-point noise (1e-9 mm) so that `58.0` does not print as `57.99999999999999`.
+fn round(value: f64) -> f64 {
+    let rounded = (value * 1e9).round() / 1e9;
+    if rounded == 0.0 {
+        0.0
+    } else {
+        rounded
+    }
+}
+
+fn move_json(movement: &Move) -> Value {
+    json!({
+        "line": movement.line + 1,
+        "block": movement.block_number,
+        "motion": movement.motion,
+        "start": axes_json(&movement.start),
+        "end": axes_json(&movement.end),
+        "mcs": movement.machine.as_ref().map(|values| axes_json(values)),
+        "arc": Value::Null,
+        "feed": movement.feed.map(round),
+        "uncertain": movement.uncertain,
+    })
+}
+
+fn write_csv(stdout: &mut dyn Write, config: &MachineConfig, moves: &[Move]) -> io::Result<()> {
+    let names: Vec<&str> = config.axes.iter().map(|axis| axis.name.as_str()).collect();
+    write!(stdout, "line,block,motion")?;
+    for name in &names {
+        write!(stdout, ",{name}")?;
+    }
+    writeln!(stdout, ",feed,uncertain")?;
+    for movement in moves {
+        write!(
+            stdout,
+            "{},{},{}",
+            movement.line + 1,
+            movement.block_number.as_deref().unwrap_or(""),
+            movement.motion
+        )?;
+        for name in &names {
+            match movement.end.iter().find(|(axis, _)| axis == name) {
+                Some((_, value)) => write!(stdout, ",{}", round(*value))?,
+                None => write!(stdout, ",")?,
+            }
+        }
+        let feed = movement
+            .feed
+            .map(|feed| round(feed).to_string())
+            .unwrap_or_default();
+        writeln!(stdout, ",{feed},{}", movement.uncertain.join(" "))?;
+    }
+    Ok(())
+}

@@ -1,0 +1,192 @@
+//! Checks the analysis against the conformance fixtures in `fixtures/conformance`: each block may say in
+//! its comment where the axes must be after it (`; => X75 Z58`, `X?` for unknown, `F254` for the feed)
+//! and which analysis findings it must report (`!! A201`). See `fixtures/conformance/README.md`.
+
+use sinumerik_lsp::analysis::{analyze_program, Move, ProgramKind};
+use sinumerik_lsp::config::MachineConfig;
+use sinumerik_lsp::syntax::lines;
+use std::path::{Path, PathBuf};
+
+/// What one annotated block expects.
+#[derive(Debug, Default)]
+struct Expectation {
+    /// Axis name with its value, or `None` for unknown.
+    positions: Vec<(String, Option<f64>)>,
+    feed: Option<f64>,
+    /// Whether the block has a `=>` part (and so must move).
+    moves: bool,
+    codes: Vec<String>,
+}
+
+fn parse_expectation(comment: &str) -> Expectation {
+    let mut expectation = Expectation::default();
+    let (moves_part, codes_part) = match comment.find("!!") {
+        Some(position) => (&comment[..position], &comment[position + 2..]),
+        None => (comment, ""),
+    };
+    if let Some(position) = moves_part.find("=>") {
+        expectation.moves = true;
+        for word in moves_part[position + 2..].split_whitespace() {
+            let (name, value) = word.split_at(
+                word.find(|c: char| !c.is_ascii_alphabetic())
+                    .unwrap_or(word.len()),
+            );
+            if name == "F" {
+                expectation.feed = Some(value.parse().expect("a number after F"));
+            } else if value == "?" {
+                expectation.positions.push((name.to_string(), None));
+            } else {
+                let value: f64 = value
+                    .parse()
+                    .unwrap_or_else(|_| panic!("`{word}` is not an axis value"));
+                expectation.positions.push((name.to_string(), Some(value)));
+            }
+        }
+    }
+    expectation.codes = codes_part.split_whitespace().map(str::to_string).collect();
+    expectation
+}
+
+fn close(left: f64, right: f64) -> bool {
+    (left - right).abs() <= 1e-6
+}
+
+fn check_fixture(path: &Path) -> Vec<String> {
+    let text = std::fs::read_to_string(path).expect("fixture is readable");
+    let config = if text.starts_with("; config: turn") {
+        MachineConfig::turn()
+    } else {
+        MachineConfig::mill()
+    };
+    let kind =
+        ProgramKind::from_extension(path.extension().and_then(|extension| extension.to_str()));
+    let analysis = analyze_program(&text, &config, kind);
+    let mut failures = Vec::new();
+    let name = path.file_name().unwrap().to_string_lossy().to_string();
+    for (line_index, (start, end)) in lines::line_ranges(&text).enumerate() {
+        let line = &text[start..end];
+        let expectation = match line.find(';') {
+            Some(position)
+                if line[position..].contains("=>") || line[position..].contains("!!") =>
+            {
+                parse_expectation(&line[position + 1..])
+            }
+            _ => Expectation::default(),
+        };
+        let reported: Vec<String> = analysis
+            .diagnostics
+            .iter()
+            .filter(|item| {
+                item.line == line_index && item.diagnostic.code.as_str().starts_with('A')
+            })
+            .map(|item| item.diagnostic.code.as_str().to_string())
+            .collect();
+        if reported != expectation.codes {
+            failures.push(format!(
+                "{name}:{}: expected findings {:?}, got {:?}",
+                line_index + 1,
+                expectation.codes,
+                reported
+            ));
+        }
+        if !expectation.moves {
+            continue;
+        }
+        let Some(movement) = analysis
+            .moves
+            .iter()
+            .find(|movement| movement.line == line_index)
+        else {
+            failures.push(format!(
+                "{name}:{}: expected a move, found none",
+                line_index + 1
+            ));
+            continue;
+        };
+        failures.extend(compare_move(&name, line_index, &expectation, movement));
+    }
+    failures
+}
+
+fn compare_move(
+    name: &str,
+    line_index: usize,
+    expectation: &Expectation,
+    movement: &Move,
+) -> Vec<String> {
+    let mut failures = Vec::new();
+    let at = format!("{name}:{}", line_index + 1);
+    for (axis, expected) in &expectation.positions {
+        let actual = movement
+            .end
+            .iter()
+            .find(|(end_axis, _)| end_axis == axis)
+            .map(|(_, value)| *value);
+        match (expected, actual) {
+            (Some(expected), Some(actual)) if close(*expected, actual) => {}
+            (None, None) if movement.uncertain.contains(axis) => {}
+            _ => failures.push(format!(
+                "{at}: {axis} expected {}, got {} (uncertain: {:?})",
+                expected.map_or("unknown".to_string(), |value| value.to_string()),
+                actual.map_or("unknown".to_string(), |value| value.to_string()),
+                movement.uncertain
+            )),
+        }
+    }
+    if let Some(expected) = expectation.feed {
+        if !movement.feed.is_some_and(|feed| close(feed, expected)) {
+            failures.push(format!(
+                "{at}: feed expected {expected}, got {:?}",
+                movement.feed
+            ));
+        }
+    }
+    failures
+}
+
+fn fixtures() -> Vec<PathBuf> {
+    let folder = Path::new(env!("CARGO_MANIFEST_DIR")).join("fixtures/conformance");
+    let mut paths: Vec<PathBuf> = std::fs::read_dir(&folder)
+        .expect("fixtures/conformance exists")
+        .map(|entry| entry.expect("directory entry").path())
+        .filter(|path| {
+            path.extension()
+                .and_then(|extension| extension.to_str())
+                .is_some_and(|extension| {
+                    extension.eq_ignore_ascii_case("mpf") || extension.eq_ignore_ascii_case("spf")
+                })
+        })
+        .collect();
+    paths.sort();
+    paths
+}
+
+#[test]
+fn conformance_fixtures_resolve_as_expected() {
+    let paths = fixtures();
+    assert!(
+        paths.len() >= 10,
+        "expected the conformance fixtures, found {}",
+        paths.len()
+    );
+    let failures: Vec<String> = paths.iter().flat_map(|path| check_fixture(path)).collect();
+    assert!(
+        failures.is_empty(),
+        "{} failures:\n{}",
+        failures.len(),
+        failures.join("\n")
+    );
+}
+
+#[test]
+fn the_harness_notices_a_wrong_expectation() {
+    // A deliberately wrong expectation must be reported, or the fixtures would prove nothing.
+    let folder = std::env::temp_dir().join(format!("sinumerik-conformance-{}", std::process::id()));
+    std::fs::create_dir_all(&folder).unwrap();
+    let path = folder.join("WRONG.MPF");
+    std::fs::write(&path, "N10 G0 X10 ; => X11\nN20 G91 Y5 ; => Y5\n").unwrap();
+    let failures = check_fixture(&path);
+    std::fs::remove_dir_all(&folder).unwrap();
+    assert_eq!(failures.len(), 3, "{failures:?}");
+    assert!(failures[0].contains("X expected 11"), "{failures:?}");
+}
