@@ -15,7 +15,7 @@ pub use engine::{Engine, Move};
 
 use crate::config::MachineConfig;
 use crate::diagnostics::LineDiagnostic;
-use crate::syntax::{lines, Block, LineParser, SyntaxContext};
+use crate::syntax::lines;
 
 /// Everything the analysis finds in a program.
 #[derive(Debug, Clone, PartialEq)]
@@ -50,17 +50,8 @@ pub fn analyze(text: &str, config: &MachineConfig) -> Analysis {
     analyze_program(text, config, ProgramKind::Main)
 }
 
-/// Parses and interprets a whole program of the given kind.
+/// Parses and interprets a whole program of the given kind, in one pass over its blocks.
 pub fn analyze_program(text: &str, config: &MachineConfig, kind: ProgramKind) -> Analysis {
-    let mut diagnostics = crate::syntax::check_program(text, config);
-    let mut context = SyntaxContext::new(config);
-    for name in crate::syntax::macro_names(text) {
-        context.add_macro(name);
-    }
-    let mut parser = LineParser::new();
-    let mut block = Block::default();
-    let mut syntax_diagnostics = Vec::new();
-    let mut semantic = Vec::new();
     let mut engine = Engine::new(config);
     // A subprogram (or a program with a PROC header) starts with the caller's feed, unknown here.
     let is_subprogram = kind == ProgramKind::Subprogram
@@ -74,20 +65,11 @@ pub fn analyze_program(text: &str, config: &MachineConfig, kind: ProgramKind) ->
         engine.assume_inherited_state();
     }
     let mut moves = Vec::new();
-    for (line_index, (start, end)) in lines::line_ranges(text).enumerate() {
-        let line = &text[start..end];
-        parser.parse(line, &context, &mut block, &mut syntax_diagnostics);
-        if let Some(movement) = engine.apply(line_index, line, &block, &mut semantic) {
-            moves.push(movement);
-        }
-        diagnostics.extend(semantic.drain(..).map(|mut diagnostic| {
-            diagnostic.severity = config.severity_of(diagnostic.code);
-            LineDiagnostic {
-                line: line_index,
-                diagnostic,
+    let diagnostics =
+        crate::syntax::visit_blocks(text, config, |line_index, line, block, findings| {
+            if let Some(movement) = engine.apply(line_index, line, block, findings) {
+                moves.push(movement);
             }
-        }));
-    }
-    diagnostics.sort_by_key(|item| (item.line, item.diagnostic.span.start()));
+        });
     Analysis { moves, diagnostics }
 }

@@ -42,32 +42,7 @@ pub(crate) fn run_preview(
     );
     let analysis = analyze_program(&source.text, &config, kind);
     match options.format {
-        PreviewFormat::Json => {
-            let lines = ProgramLines::new(&source.text);
-            let diagnostics: Vec<Value> = analysis
-                .diagnostics
-                .iter()
-                .map(|item| {
-                    let (column, end_column) = lines.columns(item.line, item.diagnostic.span);
-                    json!({
-                        "line": item.line + 1,
-                        "column": column,
-                        "end_column": end_column,
-                        "severity": item.diagnostic.severity.as_str(),
-                        "code": item.diagnostic.code.as_str(),
-                        "message": item.diagnostic.message,
-                    })
-                })
-                .collect();
-            let document = json!({
-                "file": options.path.display().to_string(),
-                "units": if config.metric { "mm" } else { "inch" },
-                "moves": analysis.moves.iter().map(move_json).collect::<Vec<_>>(),
-                "diagnostics": diagnostics,
-            });
-            serde_json::to_writer_pretty(&mut *stdout, &document)?;
-            writeln!(stdout)?;
-        }
+        PreviewFormat::Json => write_json(stdout, options, &config, &source.text, &analysis)?,
         PreviewFormat::Csv => write_csv(stdout, &config, &analysis.moves)?,
     }
     let has_errors = analysis
@@ -79,6 +54,50 @@ pub(crate) fn run_preview(
     } else {
         EXIT_OK
     })
+}
+
+/// Writes the document move by move: a program of a million blocks must not build a tree of a million
+/// JSON values in memory first.
+fn write_json(
+    stdout: &mut dyn Write,
+    options: &PreviewOptions,
+    config: &MachineConfig,
+    text: &str,
+    analysis: &crate::analysis::Analysis,
+) -> io::Result<()> {
+    let mut out = io::BufWriter::new(stdout);
+    let header = json!({
+        "file": options.path.display().to_string(),
+        "units": if config.metric { "mm" } else { "inch" },
+    });
+    let header = serde_json::to_string(&header)?;
+    // The header object without its closing brace, then the two arrays.
+    write!(out, "{},\n\"moves\": [", &header[..header.len() - 1])?;
+    for (index, movement) in analysis.moves.iter().enumerate() {
+        let separator = if index == 0 { "\n" } else { ",\n" };
+        write!(out, "{separator}  ")?;
+        serde_json::to_writer(&mut out, &move_json(movement))?;
+    }
+    write!(out, "\n],\n\"diagnostics\": [")?;
+    let lines = ProgramLines::new(text);
+    for (index, item) in analysis.diagnostics.iter().enumerate() {
+        let (column, end_column) = lines.columns(item.line, item.diagnostic.span);
+        let separator = if index == 0 { "\n" } else { ",\n" };
+        write!(out, "{separator}  ")?;
+        serde_json::to_writer(
+            &mut out,
+            &json!({
+                "line": item.line + 1,
+                "column": column,
+                "end_column": end_column,
+                "severity": item.diagnostic.severity.as_str(),
+                "code": item.diagnostic.code.as_str(),
+                "message": item.diagnostic.message,
+            }),
+        )?;
+    }
+    writeln!(out, "\n]}}")?;
+    out.flush()
 }
 
 fn config_for(options: &PreviewOptions) -> Result<MachineConfig, String> {

@@ -20,6 +20,17 @@ use crate::diagnostics::LineDiagnostic;
 /// All syntax diagnostics of a program text, lines 0-based, severities after the configuration's
 /// overrides, sorted by line and column.
 pub fn check_program(text: &str, config: &MachineConfig) -> Vec<LineDiagnostic> {
+    visit_blocks(text, config, |_, _, _, _| {})
+}
+
+/// Parses every block of `text` once and hands it to `visit` (with its line number and text, and the
+/// list to which the visitor may add findings of that line). Returns the syntax diagnostics together
+/// with the visitor's, with the configured severities, sorted by line and column.
+pub fn visit_blocks(
+    text: &str,
+    config: &MachineConfig,
+    mut visit: impl FnMut(usize, &str, &Block, &mut Vec<crate::diagnostics::Diagnostic>),
+) -> Vec<LineDiagnostic> {
     let mut context = SyntaxContext::new(config);
     for name in macro_names(text) {
         context.add_macro(name);
@@ -27,20 +38,26 @@ pub fn check_program(text: &str, config: &MachineConfig) -> Vec<LineDiagnostic> 
     let mut parser = LineParser::new();
     let mut block = Block::default();
     let mut line_diagnostics = Vec::new();
+    let mut visitor_diagnostics = Vec::new();
     let mut structure = structure::StructureChecker::default();
     let mut out = Vec::new();
     for (line_index, (start, end)) in lines::line_ranges(text).enumerate() {
-        parser.parse(
-            &text[start..end],
-            &context,
-            &mut block,
-            &mut line_diagnostics,
-        );
+        let line = &text[start..end];
+        parser.parse(line, &context, &mut block, &mut line_diagnostics);
         out.extend(line_diagnostics.drain(..).map(|diagnostic| LineDiagnostic {
             line: line_index,
             diagnostic,
         }));
         structure.feed(line_index, &block, &mut out);
+        visit(line_index, line, &block, &mut visitor_diagnostics);
+        out.extend(
+            visitor_diagnostics
+                .drain(..)
+                .map(|diagnostic| LineDiagnostic {
+                    line: line_index,
+                    diagnostic,
+                }),
+        );
     }
     structure.finish(&mut out);
     for item in &mut out {

@@ -1,0 +1,81 @@
+//! End-to-end tests of `sinumerik-lsp preview`, run against the built binary.
+
+use std::path::Path;
+use std::process::Command;
+
+fn preview(args: &[&str]) -> (i32, String, String) {
+    let output = Command::new(env!("CARGO_BIN_EXE_sinumerik-lsp"))
+        .arg("preview")
+        .args(args)
+        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .output()
+        .expect("the binary runs");
+    (
+        output.status.code().unwrap_or(-1),
+        String::from_utf8_lossy(&output.stdout).into_owned(),
+        String::from_utf8_lossy(&output.stderr).into_owned(),
+    )
+}
+
+#[test]
+fn json_gives_the_seed_examples_end_points() {
+    let (code, stdout, stderr) = preview(&["fixtures/examples/turning_seed.mpf"]);
+    assert_eq!(code, 0, "{stderr}");
+    let document: serde_json::Value = serde_json::from_str(&stdout).expect("valid JSON");
+    assert_eq!(document["units"], "mm");
+    let ends: Vec<(String, f64, f64)> = document["moves"]
+        .as_array()
+        .expect("moves")
+        .iter()
+        .map(|movement| {
+            (
+                movement["block"].as_str().unwrap_or("").to_string(),
+                movement["end"]["X"].as_f64().expect("X"),
+                movement["end"]["Z"].as_f64().expect("Z"),
+            )
+        })
+        .collect();
+    assert_eq!(
+        ends,
+        vec![
+            ("N10".to_string(), 20.0, 90.0),
+            ("N20".to_string(), 75.0, 58.0),
+            ("N180".to_string(), 115.0, 60.0),
+            ("N190".to_string(), 103.0, 17.0),
+        ]
+    );
+    let second = &document["moves"][1];
+    assert_eq!(second["line"], 4);
+    assert_eq!(second["start"]["Z"], 90.0);
+    assert_eq!(second["uncertain"].as_array().map(Vec::len), Some(0));
+    assert!(document["diagnostics"]
+        .as_array()
+        .is_some_and(Vec::is_empty));
+}
+
+#[test]
+fn csv_has_a_row_per_move_and_unknown_axes_empty() {
+    let folder = std::env::temp_dir().join(format!("sinumerik-preview-{}", std::process::id()));
+    std::fs::create_dir_all(&folder).unwrap();
+    let program = folder.join("UNKNOWN.MPF");
+    std::fs::write(&program, "N10 G0 X10\nN20 G91 Y5\n").unwrap();
+    let (code, stdout, _) = preview(&["--format", "csv", program.to_str().unwrap()]);
+    std::fs::remove_dir_all(&folder).unwrap();
+    assert_eq!(code, 0);
+    let lines: Vec<&str> = stdout.lines().collect();
+    assert_eq!(lines[0], "line,block,motion,X,Y,Z,A,B,C,feed,uncertain");
+    assert_eq!(lines[1], "1,N10,G0,10,,,,,,,");
+    assert_eq!(lines[2], "2,N20,G0,10,,,,,,,Y");
+    assert_eq!(lines.len(), 3);
+}
+
+#[test]
+fn usage_and_file_problems_exit_2() {
+    assert_eq!(preview(&[]).0, 2);
+    assert_eq!(preview(&["a.mpf", "b.mpf"]).0, 2);
+    assert_eq!(preview(&["--format", "svgx", "a.mpf"]).0, 2);
+    let missing = Path::new("fixtures/does-not-exist.mpf");
+    let (code, _, stderr) = preview(&[missing.to_str().unwrap()]);
+    assert_eq!(code, 2);
+    assert!(stderr.contains("does-not-exist.mpf"), "{stderr}");
+}
