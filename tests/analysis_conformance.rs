@@ -120,11 +120,15 @@ fn compare_move(
         let actual = movement
             .end
             .iter()
-            .find(|(end_axis, _)| end_axis == axis)
+            .find(|(end_axis, _)| end_axis.as_ref() == axis.as_str())
             .map(|(_, value)| *value);
         match (expected, actual) {
             (Some(expected), Some(actual)) if close(*expected, actual) => {}
-            (None, None) if movement.uncertain.contains(axis) => {}
+            (None, None)
+                if movement
+                    .uncertain
+                    .iter()
+                    .any(|name| name.as_ref() == axis.as_str()) => {}
             _ => failures.push(format!(
                 "{at}: {axis} expected {}, got {} (uncertain: {:?})",
                 expected.map_or("unknown".to_string(), |value| value.to_string()),

@@ -9,6 +9,8 @@ use crate::config::{AxisKind, MachineConfig};
 use crate::diagnostics::{Code, Diagnostic};
 use crate::syntax::ast::*;
 use crate::syntax::gcodes::GCode;
+use std::borrow::Cow;
+use std::sync::Arc;
 
 /// A block that moves axes.
 #[derive(Debug, Clone, PartialEq)]
@@ -18,19 +20,19 @@ pub struct Move {
     /// The block number as written (`N20`), if any.
     pub block_number: Option<String>,
     /// The motion G function in effect (`G0`, `G1`, `G2`, ...).
-    pub motion: String,
+    pub motion: Cow<'static, str>,
     /// Axis values before the block, as the program shows them (a diameter under DIAMON); unknown
     /// axes are left out.
-    pub start: Vec<(String, f64)>,
+    pub start: Vec<(Arc<str>, f64)>,
     /// Axis values after the block, as the program shows them; unknown axes are left out.
-    pub end: Vec<(String, f64)>,
+    pub end: Vec<(Arc<str>, f64)>,
     /// Machine coordinates (radius on transverse axes) when they are known, i.e. when no offset or
     /// frame whose value is unknown is active.
-    pub machine: Option<Vec<(String, f64)>>,
+    pub machine: Option<Vec<(Arc<str>, f64)>>,
     /// The modal feed in the basic unit system, if known.
     pub feed: Option<f64>,
     /// Axes whose value is unknown or depends on the program's flow (jumps, loops).
-    pub uncertain: Vec<String>,
+    pub uncertain: Vec<Arc<str>>,
 }
 
 /// Interprets blocks one after the other.
@@ -42,6 +44,10 @@ pub struct Engine<'a> {
     flow_uncertain: bool,
     /// Whether a feed move without F has already been reported (alarm 10860 is reported once).
     missing_feed_reported: bool,
+    /// The configured axis names, shared by every move instead of copied into each.
+    axis_names: Vec<Arc<str>>,
+    /// The positions before the current block, kept in one buffer for all blocks.
+    start_positions: Vec<Option<f64>>,
 }
 
 /// The non-modal G functions of one block that change what its axis words mean.
@@ -60,6 +66,12 @@ impl<'a> Engine<'a> {
             state: ModalState::reset(config),
             flow_uncertain: false,
             missing_feed_reported: false,
+            axis_names: config
+                .axes
+                .iter()
+                .map(|axis| Arc::from(axis.name.as_str()))
+                .collect(),
+            start_positions: Vec::with_capacity(config.axes.len()),
         }
     }
 
@@ -117,7 +129,9 @@ impl<'a> Engine<'a> {
                 }
             }
         }
-        let start_positions = self.state.positions.clone();
+        let mut start_positions = std::mem::take(&mut self.start_positions);
+        start_positions.clear();
+        start_positions.extend_from_slice(&self.state.positions);
         let mut moved = false;
         let mut unknown_reasons = false;
         let mut feed_in_block = None;
@@ -214,7 +228,9 @@ impl<'a> Engine<'a> {
                 None => self.state.feed = None,
             }
         }
-        let motion = self.state.active_name(1);
+        let motion = self.state.groups[1]
+            .map(GCode::name)
+            .unwrap_or(Cow::Borrowed(""));
         if moved && functions.frame_or_pole.is_none() && !functions.dwell {
             self.check_feed(&motion, statements, diagnostics);
         }
@@ -224,10 +240,11 @@ impl<'a> Engine<'a> {
                 line,
                 block,
                 &start_positions,
-                &motion,
+                motion.clone(),
                 unknown_reasons,
             )
         });
+        self.start_positions = start_positions;
         if forget_after {
             // The callee may have programmed a feed, so a later feed move without F is not reported.
             self.missing_feed_reported = true;
@@ -445,7 +462,7 @@ impl<'a> Engine<'a> {
         line: &str,
         block: &Block,
         start_positions: &[Option<f64>],
-        motion: &str,
+        motion: Cow<'static, str>,
         _some_unknown: bool,
     ) -> Move {
         let shows_diameter = self.state.shows_diameter();
@@ -459,31 +476,30 @@ impl<'a> Engine<'a> {
         let mut start = Vec::new();
         let mut end = Vec::new();
         let mut uncertain = Vec::new();
-        for (index, axis) in self.config.axes.iter().enumerate() {
+        for (index, name) in self.axis_names.iter().enumerate() {
             if !self.state.touched[index] {
                 continue;
             }
             if let Some(value) = start_positions[index] {
-                start.push((axis.name.clone(), display(index, value)));
+                start.push((name.clone(), display(index, value)));
             }
             match self.state.positions[index] {
                 Some(value) => {
-                    end.push((axis.name.clone(), display(index, value)));
+                    end.push((name.clone(), display(index, value)));
                     if self.flow_uncertain {
-                        uncertain.push(axis.name.clone());
+                        uncertain.push(name.clone());
                     }
                 }
-                None => uncertain.push(axis.name.clone()),
+                None => uncertain.push(name.clone()),
             }
         }
         let machine = self.state.machine_equals_programmed().then(|| {
-            self.config
-                .axes
+            self.axis_names
                 .iter()
                 .enumerate()
-                .filter_map(|(index, axis)| {
+                .filter_map(|(index, name)| {
                     let value = self.state.positions[index]?;
-                    self.state.touched[index].then(|| (axis.name.clone(), value))
+                    self.state.touched[index].then(|| (name.clone(), value))
                 })
                 .collect()
         });
@@ -493,7 +509,7 @@ impl<'a> Engine<'a> {
         Move {
             line: line_index,
             block_number,
-            motion: motion.to_string(),
+            motion,
             start,
             end,
             machine,

@@ -111,10 +111,10 @@ fn config_for(options: &PreviewOptions) -> Result<MachineConfig, String> {
     }
 }
 
-fn axes_json(values: &[(String, f64)]) -> Value {
+fn axes_json(values: &[(std::sync::Arc<str>, f64)]) -> Value {
     let mut map = Map::new();
     for (name, value) in values {
-        map.insert(name.clone(), json!(round(*value)));
+        map.insert(name.to_string(), json!(round(*value)));
     }
     Value::Object(map)
 }
@@ -139,7 +139,7 @@ fn move_json(movement: &Move) -> Value {
         "mcs": movement.machine.as_ref().map(|values| axes_json(values)),
         "arc": Value::Null,
         "feed": movement.feed.map(round),
-        "uncertain": movement.uncertain,
+        "uncertain": movement.uncertain.iter().map(|name| name.as_ref()).collect::<Vec<&str>>(),
     })
 }
 
@@ -159,7 +159,7 @@ fn write_csv(stdout: &mut dyn Write, config: &MachineConfig, moves: &[Move]) -> 
             movement.motion
         )?;
         for name in &names {
-            match movement.end.iter().find(|(axis, _)| axis == name) {
+            match movement.end.iter().find(|(axis, _)| axis.as_ref() == *name) {
                 Some((_, value)) => write!(stdout, ",{}", round(*value))?,
                 None => write!(stdout, ",")?,
             }
