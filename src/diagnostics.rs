@@ -231,6 +231,10 @@ codes! {
     FeedMissing = "A203", Error, "The first feed move (G1, G2, G3, CIP, CT) without a feedrate programmed (alarm 10860).";
     FeedNotPositive = "A204", Error, "A feedrate of 0 or less (alarm 14800).";
     DivisionByZero = "A205", Error, "A division by zero in an expression whose values are known (alarm 14051).";
+    CircleEndNotOnCircle = "A206", Error, "A circle whose end point is farther off the circle than the tolerance MD21000/MD21010 allows (alarm 14040).";
+    CircleRadiusTooSmall = "A207", Error, "A circle radius CR smaller than half the distance from start to end point.";
+    CircleRadiusFullCircle = "A208", Error, "A circle with CR whose end point equals its start point (alarm 14040).";
+    CircleWithoutCentre = "A209", Error, "G2/G3 without centre, radius, opening angle or polar values.";
 }
 
 impl fmt::Display for Code {

@@ -79,3 +79,31 @@ fn usage_and_file_problems_exit_2() {
     assert_eq!(code, 2);
     assert!(stderr.contains("does-not-exist.mpf"), "{stderr}");
 }
+
+#[test]
+fn arcs_carry_centre_radius_and_direction() {
+    let folder = std::env::temp_dir().join(format!("sinumerik-preview-arc-{}", std::process::id()));
+    std::fs::create_dir_all(&folder).unwrap();
+    let program = folder.join("ARC.MPF");
+    std::fs::write(
+        &program,
+        "N10 G0 X0 Y0\nN20 G2 X20 Y0 I10 J0 F100\nN30 G3 X30 Y10 CR=-10\n",
+    )
+    .unwrap();
+    let (code, stdout, stderr) = preview(&[program.to_str().unwrap()]);
+    std::fs::remove_dir_all(&folder).unwrap();
+    assert_eq!(code, 0, "{stderr}");
+    let document: serde_json::Value = serde_json::from_str(&stdout).expect("valid JSON");
+    let arc = &document["moves"][1]["arc"];
+    assert_eq!(arc["centre"]["X"], 10.0);
+    assert_eq!(arc["centre"]["Y"], 0.0);
+    assert_eq!(arc["radius"], 10.0);
+    assert_eq!(arc["direction"], "cw");
+    assert_eq!(arc["sweep"], 180.0);
+    // CR=-10 from (20, 0) to (30, 10) counter-clockwise: the long arc around (30, 0).
+    let long = &document["moves"][2]["arc"];
+    assert_eq!(long["centre"]["X"], 30.0);
+    assert_eq!(long["centre"]["Y"], 0.0);
+    assert_eq!(long["sweep"], 270.0);
+    assert!(document["moves"][0]["arc"].is_null());
+}

@@ -33,6 +33,34 @@ pub struct Move {
     pub feed: Option<f64>,
     /// Axes whose value is unknown or depends on the program's flow (jumps, loops).
     pub uncertain: Vec<Arc<str>>,
+    /// The circle of a G2/G3 block, when start, end and centre are known.
+    pub arc: Option<ArcMove>,
+}
+
+/// The circle a G2/G3 block follows.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ArcMove {
+    /// The centre in the two plane axes, as the program shows them (like `Move::end`).
+    pub centre: Vec<(Arc<str>, f64)>,
+    /// The radius in the basic unit system.
+    pub radius: f64,
+    pub clockwise: bool,
+    /// The swept angle in degrees.
+    pub sweep: f64,
+}
+
+/// The circle words of one block: I, J, K (value, absolute) in the basic unit system, and CR.
+#[derive(Default)]
+struct CircleWords {
+    centre: [Option<(f64, bool)>; 3],
+    /// A centre word whose value is unknown: the circle cannot be checked.
+    centre_unknown: bool,
+    /// Whether CR was written, and its value when known.
+    radius_written: bool,
+    radius: Option<f64>,
+    opening_angle: bool,
+    /// The span of the block's words, for findings about the circle as a whole.
+    span: Option<crate::diagnostics::Span>,
 }
 
 /// Interprets blocks one after the other.
@@ -79,6 +107,7 @@ impl<'a> Engine<'a> {
     /// F is not reported.
     pub fn assume_inherited_state(&mut self) {
         self.missing_feed_reported = true;
+        self.state.forget_inherited_groups();
     }
 
     /// Applies `block` (the parsed form of `line`, line number `line_index`) and returns its move, if
@@ -133,11 +162,13 @@ impl<'a> Engine<'a> {
         start_positions.clear();
         start_positions.extend_from_slice(&self.state.positions);
         let mut moved = false;
-        let mut unknown_reasons = false;
         let mut feed_in_block = None;
         let mut polar = false;
         let mut forget_after = forget_for_frames;
+        let mut circle_words = CircleWords::default();
         for statement in statements {
+            let span = statement.span();
+            circle_words.span = Some(circle_words.span.map_or(span, |whole| whole.to(span)));
             match statement {
                 Statement::Address(word) => match word.kind {
                     AddressKind::Axis => {
@@ -145,9 +176,7 @@ impl<'a> Engine<'a> {
                             continue;
                         }
                         moved = true;
-                        if !self.apply_axis_word(line, block, word, &functions, diagnostics) {
-                            unknown_reasons = true;
-                        }
+                        self.apply_axis_word(line, block, word, &functions, diagnostics);
                     }
                     AddressKind::Feed if !functions.dwell => {
                         feed_in_block = Some(self.word_value(line, block, word, diagnostics));
@@ -156,6 +185,19 @@ impl<'a> Engine<'a> {
                         if functions.frame_or_pole.is_none() =>
                     {
                         polar = true;
+                    }
+                    AddressKind::Interpolation if word.extension.is_none() => {
+                        self.collect_centre_word(line, block, word, &mut circle_words, diagnostics);
+                    }
+                    AddressKind::Named(NamedAddress::CircleRadius) => {
+                        circle_words.radius_written = true;
+                        circle_words.radius = self
+                            .word_value(line, block, word, diagnostics)
+                            .zip(self.state.length_factor(self.config.metric))
+                            .map(|(value, factor)| value * factor);
+                    }
+                    AddressKind::Named(NamedAddress::OpeningAngle) => {
+                        circle_words.opening_angle = true
                     }
                     AddressKind::MFunction => {
                         // A tool change (M6) may run a machine-specific cycle that moves axes.
@@ -205,7 +247,6 @@ impl<'a> Engine<'a> {
         if polar {
             // Polar moves are not followed yet: the plane axes become unknown.
             moved = true;
-            unknown_reasons = true;
             for index in self.plane_axis_indexes() {
                 self.state.positions[index] = None;
                 self.state.touched[index] = true;
@@ -223,7 +264,10 @@ impl<'a> Engine<'a> {
                             ));
                         }
                     }
-                    self.state.feed = Some(value * self.state.feed_factor(self.config.metric));
+                    self.state.feed = self
+                        .state
+                        .feed_factor(self.config.metric)
+                        .map(|factor| value * factor);
                 }
                 None => self.state.feed = None,
             }
@@ -231,6 +275,17 @@ impl<'a> Engine<'a> {
         let motion = self.state.groups[1]
             .map(GCode::name)
             .unwrap_or(Cow::Borrowed(""));
+        let is_circle = matches!(motion.as_ref(), "G2" | "G3");
+        let arc = if moved && is_circle && !polar && functions.frame_or_pole.is_none() {
+            self.resolve_circle(
+                motion.as_ref() == "G2",
+                &start_positions,
+                &circle_words,
+                diagnostics,
+            )
+        } else {
+            None
+        };
         if moved && functions.frame_or_pole.is_none() && !functions.dwell {
             self.check_feed(&motion, statements, diagnostics);
         }
@@ -241,7 +296,7 @@ impl<'a> Engine<'a> {
                 block,
                 &start_positions,
                 motion.clone(),
-                unknown_reasons,
+                arc,
             )
         });
         self.start_positions = start_positions;
@@ -278,22 +333,20 @@ impl<'a> Engine<'a> {
         let kind = self.config.axes[index].kind;
         let modifier = word.value.modifier.map(|(modifier, _)| modifier);
         let absolute = match modifier {
-            Some(Modifier::Ic | Modifier::Dic | Modifier::Ric | Modifier::Cic) => false,
-            Some(_) => true,
-            None => !self.state.is_incremental(),
+            Some(Modifier::Ic | Modifier::Dic | Modifier::Ric | Modifier::Cic) => Some(false),
+            Some(_) => Some(true),
+            None => self.state.is_incremental().map(|incremental| !incremental),
         };
-        if let Some((modifier, modifier_span)) = word.value.modifier {
+        if let (Some((modifier, modifier_span)), Some(incremental)) =
+            (word.value.modifier, self.state.is_incremental())
+        {
             let redundant = match modifier {
-                Modifier::Ac => !self.state.is_incremental(),
-                Modifier::Ic => self.state.is_incremental(),
+                Modifier::Ac => !incremental,
+                Modifier::Ic => incremental,
                 _ => false,
             };
             if redundant {
-                let active = if self.state.is_incremental() {
-                    "G91"
-                } else {
-                    "G90"
-                };
+                let active = if incremental { "G91" } else { "G90" };
                 diagnostics.push(Diagnostic::new(
                     Code::RedundantModifier,
                     modifier_span,
@@ -305,28 +358,42 @@ impl<'a> Engine<'a> {
             }
         }
         let value = self.word_value(line, block, word, diagnostics);
-        let Some(mut value) = value else {
+        // Unknown value, or a mode inherited from an unseen caller: the position is unknown.
+        let (Some(mut value), Some(absolute)) = (value, absolute) else {
             self.state.positions[index] = None;
             return false;
         };
         if matches!(kind, AxisKind::Linear | AxisKind::Transverse) {
-            value *= self.state.length_factor(self.config.metric);
+            match self.state.length_factor(self.config.metric) {
+                Some(factor) => value *= factor,
+                None => {
+                    self.state.positions[index] = None;
+                    return false;
+                }
+            }
         }
         if kind == AxisKind::Transverse {
             let is_diameter = match modifier {
-                Some(Modifier::Dac | Modifier::Dic) => true,
-                Some(Modifier::Rac | Modifier::Ric) => false,
-                _ => {
-                    let (absolute_diameter, incremental_diameter) = self.state.diameter_mode();
-                    if absolute {
-                        absolute_diameter
-                    } else {
-                        incremental_diameter
-                    }
-                }
+                Some(Modifier::Dac | Modifier::Dic) => Some(true),
+                Some(Modifier::Rac | Modifier::Ric) => Some(false),
+                _ => self
+                    .state
+                    .diameter_mode()
+                    .map(|(absolute_diameter, incremental_diameter)| {
+                        if absolute {
+                            absolute_diameter
+                        } else {
+                            incremental_diameter
+                        }
+                    }),
             };
-            if is_diameter {
-                value /= 2.0;
+            match is_diameter {
+                Some(true) => value /= 2.0,
+                Some(false) => {}
+                None => {
+                    self.state.positions[index] = None;
+                    return false;
+                }
             }
         }
         if functions.machine_coordinates || functions.reference_point {
@@ -415,21 +482,170 @@ impl<'a> Engine<'a> {
         }
     }
 
-    fn plane_axis_indexes(&self) -> Vec<usize> {
-        let names: [&str; 2] = match self.state.active_name(6).as_str() {
-            "G18" => ["Z", "X"],
-            "G19" => ["Y", "Z"],
-            _ => ["X", "Y"],
+    /// The configuration indexes of the plane's first and second axis (G17: X, Y; G18: Z, X; G19: Y, Z).
+    fn plane_axes(&self) -> (Option<usize>, Option<usize>) {
+        let (first, second) = match self.state.active_name(6).as_str() {
+            "G17" => ("X", "Y"),
+            "G18" => ("Z", "X"),
+            "G19" => ("Y", "Z"),
+            // The plane is inherited from an unseen caller.
+            _ => return (None, None),
         };
-        names
+        let find = |name: &str| {
+            self.config
+                .axes
+                .iter()
+                .position(|axis| axis.name.eq_ignore_ascii_case(name))
+        };
+        (find(first), find(second))
+    }
+
+    /// Reads I, J or K: incremental from the circle's start unless `=AC` (reference §3.2), converted by
+    /// G70/G700; on a transverse axis an absolute value under diameter programming is a diameter.
+    fn collect_centre_word(
+        &self,
+        line: &str,
+        block: &Block,
+        word: &AddressWord,
+        circle_words: &mut CircleWords,
+        diagnostics: &mut Vec<Diagnostic>,
+    ) {
+        let letter = line.as_bytes()[word.name.start()].to_ascii_uppercase();
+        let slot = match letter {
+            b'I' => 0,
+            b'J' => 1,
+            _ => 2,
+        };
+        let absolute = matches!(word.value.modifier, Some((Modifier::Ac, _)));
+        let value = self.word_value(line, block, word, diagnostics);
+        let (Some(value), Some(factor)) = (value, self.state.length_factor(self.config.metric))
+        else {
+            circle_words.centre_unknown = true;
+            return;
+        };
+        let mut value = value * factor;
+        let axis_name = ["X", "Y", "Z"][slot];
+        let transverse = self
+            .config
+            .axis(axis_name)
+            .is_some_and(|axis| axis.kind == AxisKind::Transverse);
+        if transverse && absolute {
+            match self.state.diameter_mode() {
+                Some((true, _)) => value /= 2.0,
+                Some(_) => {}
+                None => {
+                    circle_words.centre_unknown = true;
+                    return;
+                }
+            }
+        }
+        circle_words.centre[slot] = Some((value, absolute));
+    }
+
+    /// Resolves the circle of a G2/G3 block, reporting what the control would reject.
+    fn resolve_circle(
+        &self,
+        clockwise: bool,
+        start_positions: &[Option<f64>],
+        words: &CircleWords,
+        diagnostics: &mut Vec<Diagnostic>,
+    ) -> Option<crate::analysis::circle::Circle> {
+        use crate::analysis::circle::{from_centre, from_radius, CircleError};
+        let span = words.span.unwrap_or_default();
+        let (Some(first), Some(second)) = self.plane_axes() else {
+            return None;
+        };
+        let plane_slots = |index: usize| -> Option<usize> {
+            match self.config.axes[index].name.to_ascii_uppercase().as_str() {
+                "X" => Some(0),
+                "Y" => Some(1),
+                "Z" => Some(2),
+                _ => None,
+            }
+        };
+        let centre_given = [first, second]
             .iter()
-            .filter_map(|name| {
-                self.config
-                    .axes
-                    .iter()
-                    .position(|axis| axis.name.eq_ignore_ascii_case(name))
-            })
-            .collect()
+            .any(|index| plane_slots(*index).is_some_and(|slot| words.centre[slot].is_some()));
+        if !words.radius_written && !centre_given && !words.opening_angle && !words.centre_unknown {
+            diagnostics.push(Diagnostic::new(
+                Code::CircleWithoutCentre,
+                span,
+                "G2/G3 needs a centre (I, J, K), a radius (CR=), an opening angle (AR=) or polar values (AP=, RP=)",
+            ));
+            return None;
+        }
+        if words.centre_unknown || (words.radius_written && words.radius.is_none()) {
+            // A value of the circle is unknown: nothing can be checked.
+            return None;
+        }
+        let start = (start_positions[first]?, start_positions[second]?);
+        let end = (self.state.positions[first]?, self.state.positions[second]?);
+        let error_const = self.config.circle_error_const;
+        let error_factor = self.config.circle_error_factor;
+        let result = if let Some(radius) = words.radius {
+            from_radius(start, end, radius, clockwise, error_const, error_factor)
+        } else if centre_given {
+            let coordinate = |index: usize, start_value: f64| -> f64 {
+                match plane_slots(index).and_then(|slot| words.centre[slot]) {
+                    Some((value, true)) => value,
+                    Some((value, false)) => start_value + value,
+                    // A centre parameter that is 0 may be left out (reference §3.2).
+                    None => start_value,
+                }
+            };
+            let centre = (coordinate(first, start.0), coordinate(second, start.1));
+            from_centre(start, end, centre, clockwise, error_const, error_factor)
+        } else {
+            // An opening angle (AR=) is not followed yet.
+            return None;
+        };
+        match result {
+            Ok(circle) => Some(circle),
+            Err(CircleError::EndNotOnCircle {
+                difference,
+                tolerance,
+            }) => {
+                diagnostics.push(Diagnostic::new(
+                    Code::CircleEndNotOnCircle,
+                    span,
+                    format!("the end point is {difference:.4} off the circle, more than the tolerance {tolerance:.4} (alarm 14040)"),
+                ));
+                None
+            }
+            Err(CircleError::RadiusTooSmall { chord, radius }) => {
+                diagnostics.push(Diagnostic::new(
+                    Code::CircleRadiusTooSmall,
+                    span,
+                    format!("CR={radius:.4} is smaller than half the distance to the end point ({:.4}): no such circle exists", chord / 2.0),
+                ));
+                None
+            }
+            Err(CircleError::RadiusFullCircle) => {
+                diagnostics.push(Diagnostic::new(
+                    Code::CircleRadiusFullCircle,
+                    span,
+                    "CR cannot program a full circle: the end point equals the start point (alarm 14040)",
+                ));
+                None
+            }
+        }
+    }
+
+    fn plane_axis_indexes(&self) -> Vec<usize> {
+        match self.plane_axes() {
+            (None, None) => {
+                // The plane is unknown: any geometry axis may be in it.
+                (0..self.config.axes.len())
+                    .filter(|&index| {
+                        matches!(
+                            self.config.axes[index].name.to_ascii_uppercase().as_str(),
+                            "X" | "Y" | "Z"
+                        )
+                    })
+                    .collect()
+            }
+            (first, second) => first.into_iter().chain(second).collect(),
+        }
     }
 
     /// G1/G2/G3 need a feed (alarm 10860); reported once, at the first feed move without one.
@@ -463,15 +679,15 @@ impl<'a> Engine<'a> {
         block: &Block,
         start_positions: &[Option<f64>],
         motion: Cow<'static, str>,
-        _some_unknown: bool,
+        arc: Option<crate::analysis::circle::Circle>,
     ) -> Move {
         let shows_diameter = self.state.shows_diameter();
-        let display = |index: usize, value: f64| {
-            if shows_diameter && self.config.axes[index].kind == AxisKind::Transverse {
-                value * 2.0
-            } else {
-                value
+        // How the program shows a value; unknown for a transverse axis while the diameter mode is.
+        let display = |index: usize, value: f64| -> Option<f64> {
+            if self.config.axes[index].kind != AxisKind::Transverse {
+                return Some(value);
             }
+            shows_diameter.map(|diameter| if diameter { value * 2.0 } else { value })
         };
         let mut start = Vec::new();
         let mut end = Vec::new();
@@ -480,12 +696,12 @@ impl<'a> Engine<'a> {
             if !self.state.touched[index] {
                 continue;
             }
-            if let Some(value) = start_positions[index] {
-                start.push((name.clone(), display(index, value)));
+            if let Some(value) = start_positions[index].and_then(|value| display(index, value)) {
+                start.push((name.clone(), value));
             }
-            match self.state.positions[index] {
+            match self.state.positions[index].and_then(|value| display(index, value)) {
                 Some(value) => {
-                    end.push((name.clone(), display(index, value)));
+                    end.push((name.clone(), value));
                     if self.flow_uncertain {
                         uncertain.push(name.clone());
                     }
@@ -506,6 +722,21 @@ impl<'a> Engine<'a> {
         let block_number = block
             .number
             .map(|number| line[number.span.start()..number.span.end()].to_string());
+        let arc = arc.map(|circle| {
+            let (first, second) = self.plane_axes();
+            let mut centre = Vec::new();
+            for (index, value) in [(first, circle.centre.0), (second, circle.centre.1)] {
+                if let Some(shown) = index.and_then(|index| display(index, value)) {
+                    centre.push((self.axis_names[index.unwrap_or_default()].clone(), shown));
+                }
+            }
+            ArcMove {
+                centre,
+                radius: circle.radius,
+                clockwise: circle.clockwise,
+                sweep: circle.sweep,
+            }
+        });
         Move {
             line: line_index,
             block_number,
@@ -515,6 +746,7 @@ impl<'a> Engine<'a> {
             machine,
             feed: self.state.feed,
             uncertain,
+            arc,
         }
     }
 }

@@ -7,6 +7,7 @@
 //! machine coordinates, polar moves, calls of subprograms and cycles, transformations) or "uncertain"
 //! (everything after a jump or control structure, because the engine evaluates in program order).
 
+pub mod circle;
 pub mod engine;
 pub mod eval;
 pub mod state;

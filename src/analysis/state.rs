@@ -129,48 +129,66 @@ impl ModalState {
             .is_some_and(|code| code.name() == name)
     }
 
-    pub fn is_incremental(&self) -> bool {
-        self.active_is(14, "G91")
+    /// G91 active: `Some(true)`; G90: `Some(false)`; `None` in a subprogram that has not programmed
+    /// either (the caller's mode applies, unknown here).
+    pub fn is_incremental(&self) -> Option<bool> {
+        self.groups[14].map(|code| code.name() == "G91")
     }
 
-    /// G70 or G700 on a metric machine, G71 or G710 on an inch machine: lengths need converting.
-    pub fn length_factor(&self, metric_machine: bool) -> f64 {
+    /// The factor from programmed lengths to the basic system: 25.4 for G70/G700 on a metric machine,
+    /// 1/25.4 for G71/G710 on an inch machine, else 1; `None` when the unit group is unknown.
+    pub fn length_factor(&self, metric_machine: bool) -> Option<f64> {
+        self.groups[13]?;
         let inch_programmed = self.active_is(13, "G70") || self.active_is(13, "G700");
-        match (metric_machine, inch_programmed) {
+        Some(match (metric_machine, inch_programmed) {
             (true, true) => 25.4,
             (false, false) => 1.0 / 25.4,
             _ => 1.0,
-        }
+        })
     }
 
-    /// G700/G710 also convert the feed.
-    pub fn feed_factor(&self, metric_machine: bool) -> f64 {
-        match (
-            metric_machine,
-            self.active_is(13, "G700"),
-            self.active_is(13, "G710"),
-        ) {
-            (true, true, _) => 25.4,
-            (false, _, true) => 1.0 / 25.4,
-            _ => 1.0,
-        }
+    /// G700/G710 also convert the feed; `None` when the unit group is unknown.
+    pub fn feed_factor(&self, metric_machine: bool) -> Option<f64> {
+        self.groups[13]?;
+        Some(
+            match (
+                metric_machine,
+                self.active_is(13, "G700"),
+                self.active_is(13, "G710"),
+            ) {
+                (true, true, _) => 25.4,
+                (false, _, true) => 1.0 / 25.4,
+                _ => 1.0,
+            },
+        )
     }
 
     /// How the transverse axis reads values: (absolute values are diameters, incremental values are
-    /// diameters), by the modal group 29 (reference §3.7).
-    pub fn diameter_mode(&self) -> (bool, bool) {
-        if self.active_is(29, "DIAMON") {
+    /// diameters), by the modal group 29 (reference §3.7); `None` when the group is unknown.
+    pub fn diameter_mode(&self) -> Option<(bool, bool)> {
+        self.groups[29]?;
+        Some(if self.active_is(29, "DIAMON") {
             (true, true)
         } else if self.active_is(29, "DIAM90") {
             (true, false)
         } else {
             (false, false)
-        }
+        })
     }
 
-    /// Whether the position display shows the transverse axis as a diameter.
-    pub fn shows_diameter(&self) -> bool {
-        self.active_is(29, "DIAMON") || self.active_is(29, "DIAM90")
+    /// Whether the position display shows the transverse axis as a diameter; `None` when unknown.
+    pub fn shows_diameter(&self) -> Option<bool> {
+        self.groups[29]?;
+        Some(self.active_is(29, "DIAMON") || self.active_is(29, "DIAM90"))
+    }
+
+    /// A subprogram starts with its caller's modal state, which is not known here: the groups that
+    /// decide how axis words read (motion, plane, settable offset, units, G90/G91, feed type, diameter)
+    /// stay unknown until the subprogram programs them.
+    pub fn forget_inherited_groups(&mut self) {
+        for group in [1, 6, 8, 13, 14, 15, 29] {
+            self.groups[group] = None;
+        }
     }
 
     /// Whether machine coordinates equal programmed ones: no settable offset (G500), no programmable
@@ -215,11 +233,14 @@ mod tests {
     #[test]
     fn units_convert_lengths_and_feeds() {
         let mut state = ModalState::reset(&MachineConfig::mill());
-        assert_eq!(state.length_factor(true), 1.0);
+        assert_eq!(state.length_factor(true), Some(1.0));
         state.set_modal(gcode_by_written_name("G70").unwrap());
-        assert_eq!(state.length_factor(true), 25.4);
-        assert_eq!(state.feed_factor(true), 1.0);
+        assert_eq!(state.length_factor(true), Some(25.4));
+        assert_eq!(state.feed_factor(true), Some(1.0));
         state.set_modal(gcode_by_written_name("G700").unwrap());
-        assert_eq!(state.feed_factor(true), 25.4);
+        assert_eq!(state.feed_factor(true), Some(25.4));
+        state.forget_inherited_groups();
+        assert_eq!(state.length_factor(true), None);
+        assert_eq!(state.is_incremental(), None);
     }
 }

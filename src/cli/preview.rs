@@ -137,7 +137,12 @@ fn move_json(movement: &Move) -> Value {
         "start": axes_json(&movement.start),
         "end": axes_json(&movement.end),
         "mcs": movement.machine.as_ref().map(|values| axes_json(values)),
-        "arc": Value::Null,
+        "arc": movement.arc.as_ref().map(|arc| json!({
+            "centre": axes_json(&arc.centre),
+            "radius": round(arc.radius),
+            "direction": if arc.clockwise { "cw" } else { "ccw" },
+            "sweep": round(arc.sweep),
+        })),
         "feed": movement.feed.map(round),
         "uncertain": movement.uncertain.iter().map(|name| name.as_ref()).collect::<Vec<&str>>(),
     })
