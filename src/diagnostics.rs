@@ -235,6 +235,9 @@ codes! {
     CircleRadiusTooSmall = "A207", Error, "A circle radius CR smaller than half the distance from start to end point.";
     CircleRadiusFullCircle = "A208", Error, "A circle with CR whose end point equals its start point (alarm 14040).";
     CircleWithoutCentre = "A209", Error, "G2/G3 without centre, radius, opening angle or polar values.";
+    PolarWithoutPole = "A210", Information, "A polar move (AP/RP) while no pole is defined: the pole is the zero point of the workpiece coordinate system.";
+    PolarWithPlaneAxis = "A211", Error, "A plane axis programmed together with AP/RP; only the perpendicular axis may join a polar block.";
+    PolarRadiusNegative = "A212", Error, "A negative polar radius RP.";
 }
 
 impl fmt::Display for Code {

@@ -10,8 +10,8 @@ use std::path::{Path, PathBuf};
 /// What one annotated block expects.
 #[derive(Debug, Default)]
 struct Expectation {
-    /// Axis name with its value, or `None` for unknown.
-    positions: Vec<(String, Option<f64>)>,
+    /// Axis name with its value and the number of decimals written, or `None` for unknown.
+    positions: Vec<(String, Option<(f64, usize)>)>,
     feed: Option<f64>,
     /// Whether the block has a `=>` part (and so must move).
     moves: bool,
@@ -36,10 +36,15 @@ fn parse_expectation(comment: &str) -> Expectation {
             } else if value == "?" {
                 expectation.positions.push((name.to_string(), None));
             } else {
-                let value: f64 = value
+                let number: f64 = value
                     .parse()
                     .unwrap_or_else(|_| panic!("`{word}` is not an axis value"));
-                expectation.positions.push((name.to_string(), Some(value)));
+                let decimals = value
+                    .split_once('.')
+                    .map_or(0, |(_, fraction)| fraction.len());
+                expectation
+                    .positions
+                    .push((name.to_string(), Some((number, decimals))));
             }
         }
     }
@@ -49,6 +54,15 @@ fn parse_expectation(comment: &str) -> Expectation {
 
 fn close(left: f64, right: f64) -> bool {
     (left - right).abs() <= 1e-6
+}
+
+/// An expectation is the value rounded to the decimals it is written with (the reference gives four);
+/// whole numbers are compared to 1e-6.
+fn matches_written(actual: f64, expected: f64, decimals: usize) -> bool {
+    if decimals == 0 {
+        return close(actual, expected);
+    }
+    (actual - expected).abs() <= 0.5 * 10f64.powi(-(decimals as i32)) + 1e-9
 }
 
 fn check_fixture(path: &Path) -> Vec<String> {
@@ -123,7 +137,8 @@ fn compare_move(
             .find(|(end_axis, _)| end_axis.as_ref() == axis.as_str())
             .map(|(_, value)| *value);
         match (expected, actual) {
-            (Some(expected), Some(actual)) if close(*expected, actual) => {}
+            (Some((expected, decimals)), Some(actual))
+                if matches_written(actual, *expected, *decimals) => {}
             (None, None)
                 if movement
                     .uncertain
@@ -131,7 +146,7 @@ fn compare_move(
                     .any(|name| name.as_ref() == axis.as_str()) => {}
             _ => failures.push(format!(
                 "{at}: {axis} expected {}, got {} (uncertain: {:?})",
-                expected.map_or("unknown".to_string(), |value| value.to_string()),
+                expected.map_or("unknown".to_string(), |(value, _)| value.to_string()),
                 actual.map_or("unknown".to_string(), |value| value.to_string()),
                 movement.uncertain
             )),

@@ -1,6 +1,6 @@
 //! Applies one parsed block to the modal state, the way the control's interpreter does, and describes
 //! the resulting move. What this engine does not model yet (programmable frames for machine
-//! coordinates, polar moves, calls of subprograms, jumps) turns the affected values into "unknown" or
+//! coordinates, calls of subprograms, jumps) turns the affected values into "unknown" or
 //! "uncertain": it never shows a number it cannot stand behind.
 
 use crate::analysis::eval::{evaluate, EvalError, Variables};
@@ -47,6 +47,14 @@ pub struct ArcMove {
     pub clockwise: bool,
     /// The swept angle in degrees.
     pub sweep: f64,
+}
+
+/// The polar words of one block: AP (value, written as `=IC(..)`) and RP (basic unit system).
+#[derive(Default)]
+struct PolarWords {
+    angle: Option<(Option<f64>, bool)>,
+    radius: Option<Option<f64>>,
+    span: Option<crate::diagnostics::Span>,
 }
 
 /// The circle words of one block: I, J, K (value, absolute) in the basic unit system, and CR.
@@ -163,7 +171,8 @@ impl<'a> Engine<'a> {
         start_positions.extend_from_slice(&self.state.positions);
         let mut moved = false;
         let mut feed_in_block = None;
-        let mut polar = false;
+        let mut polar = PolarWords::default();
+        let plane_before = self.state.plane_index();
         let mut forget_after = forget_for_frames;
         let mut circle_words = CircleWords::default();
         for statement in statements {
@@ -181,10 +190,25 @@ impl<'a> Engine<'a> {
                     AddressKind::Feed if !functions.dwell => {
                         feed_in_block = Some(self.word_value(line, block, word, diagnostics));
                     }
-                    AddressKind::Named(NamedAddress::PolarAngle | NamedAddress::PolarRadius)
-                        if functions.frame_or_pole.is_none() =>
-                    {
-                        polar = true;
+                    AddressKind::Named(NamedAddress::PolarAngle) => {
+                        let incremental = matches!(word.value.modifier, Some((Modifier::Ic, _)));
+                        let value = self.word_value(line, block, word, diagnostics);
+                        polar.angle = Some((value, incremental));
+                        polar.span = Some(word.span);
+                    }
+                    AddressKind::Named(NamedAddress::PolarRadius) => {
+                        let value = self.word_value(line, block, word, diagnostics);
+                        let factor = self.state.length_factor(self.config.metric);
+                        polar.radius =
+                            Some(value.zip(factor).map(|(value, factor)| value * factor));
+                        if value.is_some_and(|value| value < 0.0) {
+                            diagnostics.push(Diagnostic::new(
+                                Code::PolarRadiusNegative,
+                                word.span,
+                                "RP is a distance from the pole and must not be negative",
+                            ));
+                        }
+                        polar.span = Some(polar.span.map_or(word.span, |span| span.to(word.span)));
                     }
                     AddressKind::Interpolation if word.extension.is_none() => {
                         self.collect_centre_word(line, block, word, &mut circle_words, diagnostics);
@@ -241,16 +265,20 @@ impl<'a> Engine<'a> {
                 _ => {}
             }
         }
-        if let Some(code) = functions.frame_or_pole {
-            self.apply_frame_instruction(code, statements);
+        if self.state.plane_index() != plane_before {
+            // The stored AP belongs to the old plane (reference §5.2).
+            self.state.polar_angle = None;
         }
-        if polar {
-            // Polar moves are not followed yet: the plane axes become unknown.
-            moved = true;
-            for index in self.plane_axis_indexes() {
-                self.state.positions[index] = None;
-                self.state.touched[index] = true;
+        let mut polar_circle_centre = None;
+        if let Some(code) = functions.frame_or_pole {
+            if matches!(code.name().as_ref(), "G110" | "G111" | "G112") {
+                self.define_pole(code, line, block, statements, &polar, diagnostics);
+            } else {
+                self.apply_frame_instruction(code, statements);
             }
+        } else if polar.angle.is_some() || polar.radius.is_some() {
+            moved = true;
+            polar_circle_centre = self.apply_polar_move(line, statements, &polar, diagnostics);
         }
         if let Some(feed) = feed_in_block {
             match feed {
@@ -276,13 +304,27 @@ impl<'a> Engine<'a> {
             .map(GCode::name)
             .unwrap_or(Cow::Borrowed(""));
         let is_circle = matches!(motion.as_ref(), "G2" | "G3");
-        let arc = if moved && is_circle && !polar && functions.frame_or_pole.is_none() {
-            self.resolve_circle(
-                motion.as_ref() == "G2",
-                &start_positions,
-                &circle_words,
-                diagnostics,
-            )
+        let polar_move = polar.angle.is_some() || polar.radius.is_some();
+        let arc = if moved && is_circle && functions.frame_or_pole.is_none() {
+            if polar_move {
+                // A polar circle turns around the pole; the start must lie on it (reference §5.2).
+                polar_circle_centre.and_then(|centre| {
+                    self.polar_circle(
+                        motion.as_ref() == "G2",
+                        &start_positions,
+                        centre,
+                        &polar,
+                        diagnostics,
+                    )
+                })
+            } else {
+                self.resolve_circle(
+                    motion.as_ref() == "G2",
+                    &start_positions,
+                    &circle_words,
+                    diagnostics,
+                )
+            }
         } else {
             None
         };
@@ -479,6 +521,204 @@ impl<'a> Engine<'a> {
             }
             // Poles and working-area limits do not move the coordinate system.
             _ => {}
+        }
+    }
+
+    /// G110 (relative to the last programmed position), G111 (absolute), G112 (relative to the last
+    /// pole): the pole of the active plane, from the plane axes or from AP/RP (reference §5.1).
+    fn define_pole(
+        &mut self,
+        code: GCode,
+        line: &str,
+        block: &Block,
+        statements: &[Statement],
+        polar: &PolarWords,
+        diagnostics: &mut Vec<Diagnostic>,
+    ) {
+        use crate::analysis::state::Pole;
+        self.state.polar_angle = None;
+        let Some(plane) = self.state.plane_index() else {
+            return;
+        };
+        let (first, second) = self.plane_axes();
+        let reference = match code.name().as_ref() {
+            "G111" => Some((0.0, 0.0)),
+            "G110" => first.zip(second).and_then(|(first, second)| {
+                self.state.positions[first].zip(self.state.positions[second])
+            }),
+            _ => match self.state.poles[plane] {
+                Pole::At(first, second) => Some((first, second)),
+                Pole::Undefined => Some((0.0, 0.0)),
+                Pole::Unknown => None,
+            },
+        };
+        let offset = if polar.angle.is_some() || polar.radius.is_some() {
+            match (polar.angle, polar.radius) {
+                (Some((Some(angle), false)), Some(Some(radius))) => {
+                    let radians = angle.to_radians();
+                    Some((radius * radians.cos(), radius * radians.sin()))
+                }
+                _ => None,
+            }
+        } else {
+            let mut values = [Some(0.0), Some(0.0)];
+            for statement in statements {
+                let Statement::Address(word) = statement else {
+                    continue;
+                };
+                if word.kind != AddressKind::Axis {
+                    continue;
+                }
+                let name = axis_name(line, word);
+                let Some(index) = self
+                    .config
+                    .axes
+                    .iter()
+                    .position(|axis| axis.name.eq_ignore_ascii_case(&name))
+                else {
+                    continue;
+                };
+                let slot = if Some(index) == first {
+                    0
+                } else if Some(index) == second {
+                    1
+                } else {
+                    continue;
+                };
+                let factor = self.state.length_factor(self.config.metric);
+                // Whether a pole coordinate on a transverse axis is a diameter is not documented
+                // (reference §5.2 [?]): it stays unknown unless the axis reads radii.
+                let diameter = self.config.axes[index].kind == AxisKind::Transverse
+                    && self.state.diameter_mode() != Some((false, false));
+                values[slot] = if diameter {
+                    None
+                } else {
+                    self.word_value(line, block, word, diagnostics)
+                        .zip(factor)
+                        .map(|(value, factor)| value * factor)
+                };
+            }
+            values[0].zip(values[1])
+        };
+        self.state.poles[plane] = match reference.zip(offset) {
+            Some((reference, offset)) => Pole::At(reference.0 + offset.0, reference.1 + offset.1),
+            None => Pole::Unknown,
+        };
+    }
+
+    /// A move to AP/RP around the pole; returns the pole (the centre of a polar circle) when known.
+    fn apply_polar_move(
+        &mut self,
+        line: &str,
+        statements: &[Statement],
+        polar: &PolarWords,
+        diagnostics: &mut Vec<Diagnostic>,
+    ) -> Option<(f64, f64)> {
+        use crate::analysis::state::Pole;
+        let span = polar.span.unwrap_or_default();
+        let (first, second) = self.plane_axes();
+        // With the plane unknown, any geometry axis may be a plane axis.
+        let plane_axes = self.plane_axis_indexes();
+        let forget_plane = |state: &mut ModalState| {
+            for index in &plane_axes {
+                state.positions[*index] = None;
+                state.touched[*index] = true;
+            }
+        };
+        let angle = match polar.angle {
+            Some((Some(value), true)) => self.state.polar_angle.map(|stored| stored + value),
+            Some((value, false)) => value,
+            Some((None, true)) => None,
+            None => self.state.polar_angle,
+        };
+        let radius = match polar.radius {
+            Some(value) => value,
+            None => self.state.polar_radius,
+        };
+        self.state.polar_angle = angle;
+        self.state.polar_radius = radius;
+        // Only the axis perpendicular to the plane may join AP/RP (reference §5.3, T97).
+        let plane_axis_written = statements.iter().any(|statement| {
+            matches!(statement, Statement::Address(word) if word.kind == AddressKind::Axis && {
+                let name = axis_name(line, word);
+                plane_axes.iter().any(|index| self.config.axes[*index].name.eq_ignore_ascii_case(&name))
+            })
+        });
+        if plane_axis_written {
+            diagnostics.push(Diagnostic::new(
+                Code::PolarWithPlaneAxis,
+                span,
+                "a polar block may add only the axis perpendicular to the plane; a plane axis cannot join AP and RP",
+            ));
+            forget_plane(&mut self.state);
+            return None;
+        }
+        let (Some(first), Some(second), Some(plane)) = (first, second, self.state.plane_index())
+        else {
+            forget_plane(&mut self.state);
+            return None;
+        };
+        let pole = match self.state.poles[plane] {
+            Pole::At(first, second) => Some((first, second)),
+            Pole::Undefined => {
+                diagnostics.push(Diagnostic::new(
+                    Code::PolarWithoutPole,
+                    span,
+                    "no pole is defined (G110, G111, G112): the pole is the zero point of the workpiece coordinate system",
+                ));
+                Some((0.0, 0.0))
+            }
+            Pole::Unknown => None,
+        };
+        let transverse_in_plane = [first, second]
+            .iter()
+            .any(|index| self.config.axes[*index].kind == AxisKind::Transverse)
+            && self.state.diameter_mode() != Some((false, false));
+        let (Some(pole), Some(angle), Some(radius), false) =
+            (pole, angle, radius, transverse_in_plane)
+        else {
+            forget_plane(&mut self.state);
+            return None;
+        };
+        let radians = angle.to_radians();
+        self.state.positions[first] = Some(pole.0 + radius * radians.cos());
+        self.state.positions[second] = Some(pole.1 + radius * radians.sin());
+        self.state.touched[first] = true;
+        self.state.touched[second] = true;
+        Some(pole)
+    }
+
+    /// The circle of a polar G2/G3 block: around the pole, from the start to the polar end point.
+    fn polar_circle(
+        &self,
+        clockwise: bool,
+        start_positions: &[Option<f64>],
+        centre: (f64, f64),
+        polar: &PolarWords,
+        diagnostics: &mut Vec<Diagnostic>,
+    ) -> Option<crate::analysis::circle::Circle> {
+        let (Some(first), Some(second)) = self.plane_axes() else {
+            return None;
+        };
+        let start = (start_positions[first]?, start_positions[second]?);
+        let end = (self.state.positions[first]?, self.state.positions[second]?);
+        match crate::analysis::circle::from_centre(
+            start,
+            end,
+            centre,
+            clockwise,
+            self.config.circle_error_const,
+            self.config.circle_error_factor,
+        ) {
+            Ok(circle) => Some(circle),
+            Err(_) => {
+                diagnostics.push(Diagnostic::new(
+                    Code::CircleEndNotOnCircle,
+                    polar.span.unwrap_or_default(),
+                    "the start point does not lie on the polar circle around the pole within the tolerance (alarm 14040)",
+                ));
+                None
+            }
         }
     }
 

@@ -27,6 +27,23 @@ pub struct ModalState {
     /// programmed ones (together with G500 and no tool offset). Frame instructions the engine does not
     /// follow yet make it false.
     pub frame_is_identity: bool,
+    /// The polar pole of each plane (G17, G18, G19).
+    pub poles: [Pole; 3],
+    /// The stored polar angle AP in degrees (`None` after a pole or plane change, or when unknown).
+    pub polar_angle: Option<f64>,
+    /// The stored polar radius RP in the basic unit system.
+    pub polar_radius: Option<f64>,
+}
+
+/// The pole of a plane.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Pole {
+    /// No pole programmed: the WCS zero is the pole (reference §5.1).
+    Undefined,
+    /// In plane coordinates (first, second axis), basic unit system.
+    At(f64, f64),
+    /// Set somewhere the analysis cannot see (a caller, a subprogram), or from unknown values.
+    Unknown,
 }
 
 /// Siemens defaults of the G groups (reference §2.2), before the machine's MD20150 values.
@@ -83,6 +100,9 @@ impl ModalState {
             feed: None,
             variables: Variables::default(),
             frame_is_identity: true,
+            poles: [Pole::Undefined; 3],
+            polar_angle: None,
+            polar_radius: None,
         };
         for name in SIEMENS_RESET {
             if let Some(code) = gcode_by_written_name(name) {
@@ -189,6 +209,17 @@ impl ModalState {
         for group in [1, 6, 8, 13, 14, 15, 29] {
             self.groups[group] = None;
         }
+        self.poles = [Pole::Unknown; 3];
+    }
+
+    /// The active plane as an index: 0 for G17, 1 for G18, 2 for G19; `None` when inherited.
+    pub fn plane_index(&self) -> Option<usize> {
+        match self.groups[6]?.name().as_ref() {
+            "G17" => Some(0),
+            "G18" => Some(1),
+            "G19" => Some(2),
+            _ => None,
+        }
     }
 
     /// Whether machine coordinates equal programmed ones: no settable offset (G500), no programmable
@@ -200,6 +231,9 @@ impl ModalState {
     /// Every axis position becomes unknown: a subprogram, cycle or transformation the engine cannot see
     /// may have moved anything.
     pub fn forget_positions(&mut self) {
+        self.poles = [Pole::Unknown; 3];
+        self.polar_angle = None;
+        self.polar_radius = None;
         for (position, touched) in self.positions.iter_mut().zip(&mut self.touched) {
             if position.is_some() {
                 *touched = true;
