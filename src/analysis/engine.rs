@@ -221,7 +221,9 @@ impl<'a> Engine<'a> {
                             .map(|(value, factor)| value * factor);
                     }
                     AddressKind::Named(NamedAddress::OpeningAngle) => {
-                        circle_words.opening_angle = true
+                        // `G3 I10 J0 AR=90` moves without any axis word.
+                        circle_words.opening_angle = true;
+                        moved |= functions.frame_or_pole.is_none() && !functions.dwell;
                     }
                     AddressKind::MFunction => {
                         // A tool change (M6) may run a machine-specific cycle that moves axes.
@@ -305,6 +307,28 @@ impl<'a> Engine<'a> {
             .unwrap_or(Cow::Borrowed(""));
         let is_circle = matches!(motion.as_ref(), "G2" | "G3");
         let polar_move = polar.angle.is_some() || polar.radius.is_some();
+        if moved && is_circle && circle_words.opening_angle && !polar_move {
+            // With AR and a centre, the end point is the start turned about the centre, which is not
+            // followed yet: plane axes not written in the block are unknown, not left where they were.
+            let written: Vec<String> = statements
+                .iter()
+                .filter_map(|statement| match statement {
+                    Statement::Address(word) if word.kind == AddressKind::Axis => {
+                        Some(axis_name(line, word))
+                    }
+                    _ => None,
+                })
+                .collect();
+            for index in self.plane_axis_indexes() {
+                if !written
+                    .iter()
+                    .any(|name| self.config.axes[index].name.eq_ignore_ascii_case(name))
+                {
+                    self.state.positions[index] = None;
+                    self.state.touched[index] = true;
+                }
+            }
+        }
         let arc = if moved && is_circle && functions.frame_or_pole.is_none() {
             if polar_move {
                 // A polar circle turns around the pole; the start must lie on it (reference §5.2).
