@@ -12,6 +12,8 @@ use std::path::{Path, PathBuf};
 struct Expectation {
     /// Axis name with its value and the number of decimals written, or `None` for unknown.
     positions: Vec<(String, Option<(f64, usize)>)>,
+    /// The same for machine coordinates, written after `MCS`.
+    machine: Vec<(String, Option<(f64, usize)>)>,
     feed: Option<f64>,
     /// Whether the block has a `=>` part (and so must move).
     moves: bool,
@@ -26,7 +28,12 @@ fn parse_expectation(comment: &str) -> Expectation {
     };
     if let Some(position) = moves_part.find("=>") {
         expectation.moves = true;
+        let mut in_machine = false;
         for word in moves_part[position + 2..].split_whitespace() {
+            if word == "MCS" {
+                in_machine = true;
+                continue;
+            }
             let (name, value) = word.split_at(
                 word.find(|c: char| !c.is_ascii_alphabetic())
                     .unwrap_or(word.len()),
@@ -34,7 +41,12 @@ fn parse_expectation(comment: &str) -> Expectation {
             if name == "F" {
                 expectation.feed = Some(value.parse().expect("a number after F"));
             } else if value == "?" {
-                expectation.positions.push((name.to_string(), None));
+                let list = if in_machine {
+                    &mut expectation.machine
+                } else {
+                    &mut expectation.positions
+                };
+                list.push((name.to_string(), None));
             } else {
                 let number: f64 = value
                     .parse()
@@ -42,9 +54,12 @@ fn parse_expectation(comment: &str) -> Expectation {
                 let decimals = value
                     .split_once('.')
                     .map_or(0, |(_, fraction)| fraction.len());
-                expectation
-                    .positions
-                    .push((name.to_string(), Some((number, decimals))));
+                let list = if in_machine {
+                    &mut expectation.machine
+                } else {
+                    &mut expectation.positions
+                };
+                list.push((name.to_string(), Some((number, decimals))));
             }
         }
     }
@@ -150,6 +165,31 @@ fn compare_move(
                 actual.map_or("unknown".to_string(), |value| value.to_string()),
                 movement.uncertain
             )),
+        }
+    }
+    for (axis, expected) in &expectation.machine {
+        let actual = movement
+            .machine
+            .as_ref()
+            .and_then(|values| {
+                values
+                    .iter()
+                    .find(|(name, _)| name.as_ref() == axis.as_str())
+            })
+            .map(|(_, value)| *value);
+        let agrees = match (expected, actual) {
+            (Some((expected, decimals)), Some(actual)) => {
+                matches_written(actual, *expected, *decimals)
+            }
+            (None, None) => true,
+            _ => false,
+        };
+        if !agrees {
+            failures.push(format!(
+                "{at}: MCS {axis} expected {}, got {}",
+                expected.map_or("unknown".to_string(), |(value, _)| value.to_string()),
+                actual.map_or("unknown".to_string(), |value| value.to_string()),
+            ));
         }
     }
     if let Some(expected) = expectation.feed {

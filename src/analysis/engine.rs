@@ -1,6 +1,6 @@
 //! Applies one parsed block to the modal state, the way the control's interpreter does, and describes
-//! the resulting move. What this engine does not model yet (programmable frames for machine
-//! coordinates, calls of subprograms, jumps) turns the affected values into "unknown" or
+//! the resulting move. What this engine does not model yet (settable offsets, spatial rotations, calls
+//! of subprograms, jumps) turns the affected values into "unknown" or
 //! "uncertain": it never shows a number it cannot stand behind.
 
 use crate::analysis::eval::{evaluate, EvalError, Variables};
@@ -276,7 +276,7 @@ impl<'a> Engine<'a> {
             if matches!(code.name().as_ref(), "G110" | "G111" | "G112") {
                 self.define_pole(code, line, block, statements, &polar, diagnostics);
             } else {
-                self.apply_frame_instruction(code, statements);
+                self.apply_frame_instruction(code, line, block, statements, diagnostics);
             }
         } else if polar.angle.is_some() || polar.radius.is_some() {
             moved = true;
@@ -371,7 +371,7 @@ impl<'a> Engine<'a> {
             self.missing_feed_reported = true;
             self.state.forget_positions();
             self.state.variables.forget_all();
-            self.state.frame_is_identity = false;
+            self.state.frame = None;
         }
         result
     }
@@ -530,22 +530,128 @@ impl<'a> Engine<'a> {
         }
     }
 
-    fn apply_frame_instruction(&mut self, code: GCode, statements: &[Statement]) {
+    /// TRANS/ATRANS, ROT/AROT (RPL in the plane), SCALE/ASCALE, MIRROR/AMIRROR (reference §7.2, §7.3).
+    /// What cannot be followed (a spatial rotation, unknown values, frame values of other axes, G58/G59,
+    /// ROTS) makes the frame unknown.
+    fn apply_frame_instruction(
+        &mut self,
+        code: GCode,
+        line: &str,
+        block: &Block,
+        statements: &[Statement],
+        diagnostics: &mut Vec<Diagnostic>,
+    ) {
+        use crate::analysis::frame::Frame;
         let name = code.name();
-        match name.as_ref() {
-            // TRANS without axes clears the whole programmable frame.
-            "TRANS" | "ROT" | "SCALE" | "MIRROR" => {
-                let has_values = statements.iter().any(|statement| {
-                    matches!(statement, Statement::Address(word) if matches!(word.kind, AddressKind::Axis | AddressKind::Named(_)))
-                });
-                self.state.frame_is_identity = !has_values;
-            }
-            "ATRANS" | "AROT" | "ASCALE" | "AMIRROR" | "ROTS" | "AROTS" | "G58" | "G59" => {
-                self.state.frame_is_identity = false;
-            }
-            // Poles and working-area limits do not move the coordinate system.
-            _ => {}
+        let name = name.as_ref();
+        if !matches!(
+            name,
+            "TRANS"
+                | "ATRANS"
+                | "ROT"
+                | "AROT"
+                | "SCALE"
+                | "ASCALE"
+                | "MIRROR"
+                | "AMIRROR"
+                | "ROTS"
+                | "AROTS"
+                | "G58"
+                | "G59"
+        ) {
+            // Working-area limits (G25/G26) do not move the coordinate system.
+            return;
         }
+        let is_length = matches!(name, "TRANS" | "ATRANS");
+        let mut values: [Option<Option<f64>>; 3] = [None; 3];
+        let mut followable = !matches!(name, "ROTS" | "AROTS" | "G58" | "G59");
+        let mut rotation_in_plane = None;
+        for statement in statements {
+            let Statement::Address(word) = statement else {
+                continue;
+            };
+            match word.kind {
+                AddressKind::Axis => {
+                    let axis = axis_name(line, word);
+                    let Some(slot) = ["X", "Y", "Z"]
+                        .iter()
+                        .position(|name| axis.eq_ignore_ascii_case(name))
+                    else {
+                        // Frame components of other axes are not followed.
+                        followable = false;
+                        continue;
+                    };
+                    let mut value = self.word_value(line, block, word, diagnostics);
+                    if is_length {
+                        value = value
+                            .zip(self.state.length_factor(self.config.metric))
+                            .map(|(value, factor)| value * factor);
+                        let transverse = self
+                            .config
+                            .axis(&axis)
+                            .is_some_and(|axis| axis.kind == AxisKind::Transverse);
+                        if transverse && self.state.diameter_mode() != Some((false, false)) {
+                            // Whether a frame offset on a diameter axis is a diameter is not followed.
+                            value = None;
+                        }
+                    }
+                    values[slot] = Some(value);
+                }
+                AddressKind::Named(NamedAddress::RotationInPlane) => {
+                    rotation_in_plane = Some(self.word_value(line, block, word, diagnostics));
+                }
+                _ => {}
+            }
+        }
+        let any_unknown = values.iter().any(|value| matches!(value, Some(None)));
+        let written = |slot: usize, default: f64| values[slot].flatten().unwrap_or(default);
+        let element = if !followable || any_unknown {
+            None
+        } else {
+            match name {
+                "TRANS" | "ATRANS" => Some(Frame::translation([
+                    written(0, 0.0),
+                    written(1, 0.0),
+                    written(2, 0.0),
+                ])),
+                "ROT" | "AROT" => {
+                    if values.iter().any(Option::is_some) {
+                        // A spatial rotation (ROT X.. Y.. Z..) is not followed.
+                        None
+                    } else {
+                        match rotation_in_plane {
+                            None => Some(Frame::IDENTITY),
+                            Some(None) => None,
+                            Some(Some(degrees)) => match self.state.plane_index() {
+                                Some(0) => Some(Frame::rotation_in_plane(0, 1, degrees)),
+                                Some(1) => Some(Frame::rotation_in_plane(2, 0, degrees)),
+                                Some(2) => Some(Frame::rotation_in_plane(1, 2, degrees)),
+                                _ => None,
+                            },
+                        }
+                    }
+                }
+                "SCALE" | "ASCALE" => Some(Frame::scale([
+                    written(0, 1.0),
+                    written(1, 1.0),
+                    written(2, 1.0),
+                ])),
+                // The value of a mirrored axis is ignored: writing the axis mirrors it.
+                _ => Some(Frame::scale([0, 1, 2].map(|slot| {
+                    if values[slot].is_some() {
+                        -1.0
+                    } else {
+                        1.0
+                    }
+                }))),
+            }
+        };
+        let absolute = matches!(name, "TRANS" | "ROT" | "SCALE" | "MIRROR");
+        self.state.frame = match (absolute, element) {
+            (_, None) => None,
+            (true, Some(element)) => Some(element),
+            (false, Some(element)) => self.state.frame.map(|frame| frame.then_inner(&element)),
+        };
     }
 
     /// G110 (relative to the last programmed position), G111 (absolute), G112 (relative to the last
@@ -744,6 +850,35 @@ impl<'a> Engine<'a> {
                 None
             }
         }
+    }
+
+    /// Machine coordinates of the touched axes whose value is known: the programmable frame applied to
+    /// X, Y and Z (the other axes have no frame here); transverse axes as radii.
+    fn machine_positions(&self) -> Vec<(Arc<str>, f64)> {
+        let frame = self.state.frame.unwrap_or_default();
+        let slot_of = |index: usize| {
+            ["X", "Y", "Z"]
+                .iter()
+                .position(|name| self.config.axes[index].name.eq_ignore_ascii_case(name))
+        };
+        let mut point = [None; 3];
+        for index in 0..self.config.axes.len() {
+            if let Some(slot) = slot_of(index) {
+                point[slot] = self.state.positions[index];
+            }
+        }
+        self.axis_names
+            .iter()
+            .enumerate()
+            .filter(|(index, _)| self.state.touched[*index])
+            .filter_map(|(index, name)| {
+                let value = match slot_of(index) {
+                    Some(slot) => frame.apply_axis(slot, point)?,
+                    None => self.state.positions[index]?,
+                };
+                Some((name.clone(), value))
+            })
+            .collect()
     }
 
     /// The configuration indexes of the plane's first and second axis (G17: X, Y; G18: Z, X; G19: Y, Z).
@@ -973,16 +1108,7 @@ impl<'a> Engine<'a> {
                 None => uncertain.push(name.clone()),
             }
         }
-        let machine = self.state.machine_equals_programmed().then(|| {
-            self.axis_names
-                .iter()
-                .enumerate()
-                .filter_map(|(index, name)| {
-                    let value = self.state.positions[index]?;
-                    self.state.touched[index].then(|| (name.clone(), value))
-                })
-                .collect()
-        });
+        let machine = self.state.machine_known().then(|| self.machine_positions());
         let block_number = block
             .number
             .map(|number| line[number.span.start()..number.span.end()].to_string());

@@ -3,14 +3,15 @@
 //!
 //! What is followed today: G groups, G90/G91 with `=AC`/`=IC`, inch/metric (G70/G71/G700/G710),
 //! diameter programming (DIAMOF/DIAMON/DIAM90 and DAC/DIC/RAC/RIC), R parameters and DEF variables,
-//! feed, circles by centre or radius, polar coordinates. What is not followed yet turns values into
-//! "unknown" (programmable frames and work offsets for machine coordinates, AR/CIP/CT circles, calls of
-//! subprograms and cycles, transformations) or "uncertain"
+//! feed, circles by centre or radius, polar coordinates, the programmable frame for machine
+//! coordinates. What is not followed yet turns values into "unknown" (settable work offsets, spatial
+//! rotations, AR/CIP/CT circles, calls of subprograms and cycles, transformations) or "uncertain"
 //! (everything after a jump or control structure, because the engine evaluates in program order).
 
 pub mod circle;
 pub mod engine;
 pub mod eval;
+pub mod frame;
 pub mod state;
 
 pub use engine::{Engine, Move};

@@ -23,10 +23,9 @@ pub struct ModalState {
     pub feed: Option<f64>,
     /// Known values of R parameters and user variables.
     pub variables: Variables,
-    /// Whether the programmable frame is known to be empty, so that machine coordinates equal the
-    /// programmed ones (together with G500 and no tool offset). Frame instructions the engine does not
-    /// follow yet make it false.
-    pub frame_is_identity: bool,
+    /// The programmable frame; `None` when it cannot be followed (a frame instruction with unknown
+    /// values, a spatial rotation, a transformation, a call).
+    pub frame: Option<crate::analysis::frame::Frame>,
     /// The polar pole of each plane (G17, G18, G19).
     pub poles: [Pole; 3],
     /// The stored polar angle AP in degrees (`None` after a pole or plane change, or when unknown).
@@ -99,7 +98,7 @@ impl ModalState {
             touched: vec![false; config.axes.len()],
             feed: None,
             variables: Variables::default(),
-            frame_is_identity: true,
+            frame: Some(crate::analysis::frame::Frame::IDENTITY),
             poles: [Pole::Undefined; 3],
             polar_angle: None,
             polar_radius: None,
@@ -225,7 +224,13 @@ impl ModalState {
     /// Whether machine coordinates equal programmed ones: no settable offset (G500), no programmable
     /// frame. Offset values are machine data the program does not contain.
     pub fn machine_equals_programmed(&self) -> bool {
-        self.frame_is_identity && self.active_is(8, "G500")
+        self.frame.is_some_and(|frame| frame.is_identity()) && self.active_is(8, "G500")
+    }
+
+    /// Whether machine coordinates can be computed: a known programmable frame and no settable offset
+    /// (G500): the offset values are machine data the program does not contain.
+    pub fn machine_known(&self) -> bool {
+        self.frame.is_some() && self.active_is(8, "G500")
     }
 
     /// Every axis position becomes unknown: a subprogram, cycle or transformation the engine cannot see
