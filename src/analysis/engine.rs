@@ -386,12 +386,7 @@ impl<'a> Engine<'a> {
         diagnostics: &mut Vec<Diagnostic>,
     ) -> bool {
         let name = axis_name(line, word);
-        let Some(index) = self
-            .config
-            .axes
-            .iter()
-            .position(|axis| axis.name.eq_ignore_ascii_case(&name))
-        else {
+        let Some(index) = self.axis_index(&name) else {
             // Not a configured axis: the syntax layer reported it; nothing to track.
             return true;
         };
@@ -700,12 +695,7 @@ impl<'a> Engine<'a> {
                     continue;
                 }
                 let name = axis_name(line, word);
-                let Some(index) = self
-                    .config
-                    .axes
-                    .iter()
-                    .position(|axis| axis.name.eq_ignore_ascii_case(&name))
-                else {
+                let Some(index) = self.axis_index(&name) else {
                     continue;
                 };
                 let slot = if Some(index) == first {
@@ -852,6 +842,14 @@ impl<'a> Engine<'a> {
         }
     }
 
+    /// The configuration index of an axis, by name in any case.
+    fn axis_index(&self, name: &str) -> Option<usize> {
+        self.config
+            .axes
+            .iter()
+            .position(|axis| axis.name.eq_ignore_ascii_case(name))
+    }
+
     /// Machine coordinates of the touched axes whose value is known: the programmable frame applied to
     /// X, Y and Z (the other axes have no frame here); transverse axes as radii.
     fn machine_positions(&self) -> Vec<(Arc<str>, f64)> {
@@ -890,12 +888,7 @@ impl<'a> Engine<'a> {
             // The plane is inherited from an unseen caller.
             _ => return (None, None),
         };
-        let find = |name: &str| {
-            self.config
-                .axes
-                .iter()
-                .position(|axis| axis.name.eq_ignore_ascii_case(name))
-        };
+        let find = |name: &str| self.axis_index(name);
         (find(first), find(second))
     }
 
