@@ -107,3 +107,73 @@ fn arcs_carry_centre_radius_and_direction() {
     assert_eq!(long["sweep"], 270.0);
     assert!(document["moves"][0]["arc"].is_null());
 }
+
+#[test]
+fn svg_draws_rapid_dashed_feed_solid_and_arcs_as_arcs() {
+    let folder = std::env::temp_dir().join(format!("sinumerik-preview-svg-{}", std::process::id()));
+    std::fs::create_dir_all(&folder).unwrap();
+    let program = folder.join("SVG.MPF");
+    std::fs::write(
+        &program,
+        "N10 G17 G0 X0 Y0\nN20 G1 X20 F100\nN30 G3 X30 Y10 CR=10\nN40 G2 X30 Y10 I0 J-10\nN50 G0 X0 Y0\n",
+    )
+    .unwrap();
+    let (code, stdout, stderr) = preview(&["--format", "svg", program.to_str().unwrap()]);
+    std::fs::remove_dir_all(&folder).unwrap();
+    assert_eq!(code, 0, "{stderr}");
+    assert!(
+        stdout.starts_with("<svg xmlns=\"http://www.w3.org/2000/svg\""),
+        "{stdout}"
+    );
+    assert!(stdout.trim_end().ends_with("</svg>"));
+    let paths: Vec<&str> = stdout
+        .lines()
+        .filter(|line| line.starts_with("<path"))
+        .collect();
+    assert_eq!(paths.len(), 4, "{stdout}");
+    assert!(
+        paths[0].contains(r#"class="feed" d="M 0 0 L 20 0""#),
+        "{}",
+        paths[0]
+    );
+    assert!(paths[0].contains("<title>line 2</title>"));
+    // A counter-clockwise short arc: large-arc 0, sweep 1 (the picture's vertical axis points up).
+    assert!(paths[1].contains("A 10 10 0 0 1 30 10"), "{}", paths[1]);
+    // A full circle is drawn as two half arcs through the opposite point.
+    assert!(
+        paths[2].contains("A 10 10 0 0 0 30 -10 A 10 10 0 0 0 30 10"),
+        "{}",
+        paths[2]
+    );
+    assert!(paths[3].contains(r#"class="rapid""#));
+}
+
+#[test]
+fn svg_thins_out_long_programs() {
+    let folder =
+        std::env::temp_dir().join(format!("sinumerik-preview-thin-{}", std::process::id()));
+    std::fs::create_dir_all(&folder).unwrap();
+    let program = folder.join("LONG.MPF");
+    let mut text = String::from("N1 G17 G0 X0 Y0\nG1 F100\n");
+    for index in 1..=1000 {
+        text.push_str(&format!("X{index} Y{}\n", index % 7));
+    }
+    std::fs::write(&program, text).unwrap();
+    let (code, stdout, _) = preview(&[
+        "--format",
+        "svg",
+        "--max-segments",
+        "100",
+        program.to_str().unwrap(),
+    ]);
+    let (_, unthinned, _) = preview(&["--format", "svg", program.to_str().unwrap()]);
+    std::fs::remove_dir_all(&folder).unwrap();
+    assert_eq!(code, 0);
+    let count = |svg: &str| svg.lines().filter(|line| line.starts_with("<path")).count();
+    assert_eq!(count(&unthinned), 1000);
+    assert!(count(&stdout) <= 100, "{} segments", count(&stdout));
+    assert!(count(&stdout) >= 50, "{} segments", count(&stdout));
+    assert!(stdout.contains("<title>lines 3 to"), "{stdout}");
+    // The thinned path still ends where the program ends.
+    assert!(stdout.contains(" L 1000 6\""), "the last point is kept");
+}

@@ -35,6 +35,11 @@ pub struct Move {
     pub uncertain: Vec<Arc<str>>,
     /// The circle of a G2/G3 block, when start, end and centre are known.
     pub arc: Option<ArcMove>,
+    /// The working plane of the block: the names of its first and second axis (G17: X, Y; G18: Z, X;
+    /// G19: Y, Z), `None` when it is unknown.
+    pub plane: Option<(&'static str, &'static str)>,
+    /// Whether the values of transverse axes in `start`, `end` and `arc` are diameters.
+    pub transverse_as_diameter: bool,
 }
 
 /// The circle a G2/G3 block follows.
@@ -1130,6 +1135,13 @@ impl<'a> Engine<'a> {
             feed: self.state.feed,
             uncertain,
             arc,
+            transverse_as_diameter: shows_diameter == Some(true),
+            plane: match self.state.plane_index() {
+                Some(0) => Some(("X", "Y")),
+                Some(1) => Some(("Z", "X")),
+                Some(2) => Some(("Y", "Z")),
+                _ => None,
+            },
         }
     }
 }

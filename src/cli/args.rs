@@ -20,6 +20,8 @@ pub(crate) enum Command {
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub(crate) struct PreviewOptions {
     pub format: PreviewFormat,
+    /// Above this many segments the SVG picture thins runs of moves out.
+    pub max_segments: usize,
     pub config_path: Option<PathBuf>,
     pub path: PathBuf,
 }
@@ -28,6 +30,7 @@ pub(crate) struct PreviewOptions {
 pub(crate) enum PreviewFormat {
     Json,
     Csv,
+    Svg,
 }
 
 /// The options of `check`.
@@ -124,6 +127,7 @@ fn parse_check(parser: &mut lexopt::Parser) -> Result<Command, UsageError> {
 
 fn parse_preview(parser: &mut lexopt::Parser) -> Result<Command, UsageError> {
     let mut format = PreviewFormat::Json;
+    let mut max_segments = 20_000;
     let mut config_path = None;
     let mut paths = Vec::new();
     while let Some(arg) = parser.next()? {
@@ -134,15 +138,28 @@ fn parse_preview(parser: &mut lexopt::Parser) -> Result<Command, UsageError> {
                 format = match value.to_str() {
                     Some("json") => PreviewFormat::Json,
                     Some("csv") => PreviewFormat::Csv,
+                    Some("svg") => PreviewFormat::Svg,
                     _ => {
                         return Err(UsageError(format!(
-                            "unknown format {:?} for --format (expected json or csv)",
+                            "unknown format {:?} for --format (expected json, csv or svg)",
                             value.to_string_lossy()
                         )))
                     }
                 };
             }
             Long("config") => config_path = Some(PathBuf::from(parser.value()?)),
+            Long("max-segments") => {
+                let value = parser.value()?.string()?;
+                max_segments = value
+                    .parse()
+                    .ok()
+                    .filter(|count: &usize| *count > 0)
+                    .ok_or_else(|| {
+                        UsageError(format!(
+                            "--max-segments needs a positive whole number, not {value:?}"
+                        ))
+                    })?;
+            }
             Value(path) => paths.push(PathBuf::from(path)),
             other => return Err(other.unexpected().into()),
         }
@@ -150,6 +167,7 @@ fn parse_preview(parser: &mut lexopt::Parser) -> Result<Command, UsageError> {
     match paths.len() {
         1 => Ok(Command::Preview(PreviewOptions {
             format,
+            max_segments,
             config_path,
             path: paths.remove(0),
         })),

@@ -24,6 +24,7 @@
 mod args;
 mod check;
 mod preview;
+mod preview_svg;
 mod report;
 pub mod source_file;
 
@@ -41,7 +42,7 @@ pub const EXIT_TROUBLE: u8 = 2;
 const USAGE: &str = "\
 Usage:
   sinumerik-lsp check [OPTIONS] PATH...  check programs (folders recursively)
-  sinumerik-lsp preview [--format json|csv] [--config FILE] FILE
+  sinumerik-lsp preview [--format json|csv|svg] [--max-segments N] [--config FILE] FILE
                                          the resolved end point of every move
   sinumerik-lsp --help                   show this help
   sinumerik-lsp --version                show the version

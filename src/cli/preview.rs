@@ -44,6 +44,9 @@ pub(crate) fn run_preview(
     match options.format {
         PreviewFormat::Json => write_json(stdout, options, &config, &source.text, &analysis)?,
         PreviewFormat::Csv => write_csv(stdout, &config, &analysis.moves)?,
+        PreviewFormat::Svg => {
+            super::preview_svg::write_svg(stdout, &config, &analysis.moves, options.max_segments)?
+        }
     }
     let has_errors = analysis
         .diagnostics
