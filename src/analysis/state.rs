@@ -2,7 +2,7 @@
 //! programmed position of every axis (or unknown), feed, variables, and what is known about frames.
 
 use crate::analysis::eval::Variables;
-use crate::config::{AxisKind, MachineConfig};
+use crate::config::MachineConfig;
 use crate::syntax::gcodes::GCode;
 
 /// Number of G groups tracked (the highest group number in the table is below this).
@@ -246,11 +246,6 @@ impl ModalState {
             *position = None;
         }
     }
-}
-
-/// The kind of the axis at `index` of the configuration.
-pub fn axis_kind(config: &MachineConfig, index: usize) -> AxisKind {
-    config.axes[index].kind
 }
 
 #[cfg(test)]

@@ -396,6 +396,8 @@ pub enum Statement {
     Jump {
         kind: JumpKind,
         target: JumpTarget,
+        /// The condition of `IF <condition> GOTOF ...`; `None` for an unconditional jump.
+        condition: Option<ExprId>,
         span: Span,
     },
     /// A subprogram or cycle call. `name` is the span of the called name (the string for `CALL "X"`).

@@ -703,7 +703,7 @@ impl<'a> Parser<'a> {
                     .first()
                     .copied()
                     .unwrap_or_else(|| self.push_expr(ExprKind::Error, index_span));
-                let value = self.parse_assignment_value(letter_span, false);
+                let value = self.parse_assignment_value(letter_span);
                 let span = self.span_since(letter_span);
                 self.block.statements.push(Statement::Assignment {
                     target: AssignTarget::GGroup { group },
@@ -773,7 +773,7 @@ impl<'a> Parser<'a> {
             }
             return;
         }
-        let value = self.parse_assignment_value(target_span, false);
+        let value = self.parse_assignment_value(target_span);
         let span = self.span_since(target_span);
         self.block.statements.push(Statement::Assignment {
             target,
@@ -1394,7 +1394,7 @@ impl<'a> Parser<'a> {
     }
 
     /// The value of an assignment to something that is not an address: a modifier there is an error.
-    fn parse_assignment_value(&mut self, target_span: Span, _is_address: bool) -> Option<ExprId> {
+    fn parse_assignment_value(&mut self, target_span: Span) -> Option<ExprId> {
         if !self.is_at(Token::Assign) {
             let text = self.text(target_span).to_string();
             self.report(
@@ -1447,7 +1447,7 @@ impl<'a> Parser<'a> {
             indexes = list;
             target_span = name_span.to(span);
         }
-        let value = self.parse_assignment_value(target_span, false);
+        let value = self.parse_assignment_value(target_span);
         let span = self.span_since(target_span);
         let target = match r_number {
             Some(number) => AssignTarget::RParameter(number),
@@ -1548,7 +1548,7 @@ impl<'a> Parser<'a> {
                 );
                 return;
             }
-            let value = self.parse_assignment_value(target_span, false);
+            let value = self.parse_assignment_value(target_span);
             let span = self.span_since(target_span);
             self.block.statements.push(Statement::Assignment {
                 target: AssignTarget::Variable { indexes },
@@ -1949,7 +1949,7 @@ impl<'a> Parser<'a> {
     /// The counter of a FOR loop: a user variable (or one-letter parameter) assigned its start value.
     fn parse_counter_assignment(&mut self) {
         let target_span = self.advance();
-        let value = self.parse_assignment_value(target_span, false);
+        let value = self.parse_assignment_value(target_span);
         let span = self.span_since(target_span);
         self.block.statements.push(Statement::Assignment {
             target: AssignTarget::Variable {
@@ -2082,7 +2082,7 @@ impl<'a> Parser<'a> {
         }
     }
 
-    fn parse_jump(&mut self, kind: JumpKind, keyword_span: Span, _condition: Option<ExprId>) {
+    fn parse_jump(&mut self, kind: JumpKind, keyword_span: Span, condition: Option<ExprId>) {
         let target = if self.at_end() {
             if kind != JumpKind::Gotos {
                 let text = self.text(keyword_span).to_string();
@@ -2123,9 +2123,12 @@ impl<'a> Parser<'a> {
             JumpTarget::Computed(self.parse_expression())
         };
         let span = self.span_since(keyword_span);
-        self.block
-            .statements
-            .push(Statement::Jump { kind, target, span });
+        self.block.statements.push(Statement::Jump {
+            kind,
+            target,
+            condition,
+            span,
+        });
     }
 
     /// `DEF [NCK|CHAN ...] TYPE name[=init], name2[dims]` — read leniently: only the declared names and
@@ -3269,5 +3272,35 @@ fn edit_distance_is_one(left: &str, right: &str) -> bool {
             })
         }
         _ => false,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_conditional_jump_keeps_its_condition() {
+        let line = "IF R1<3 GOTOB LOOP1";
+        let (block, diagnostics) = parse_line(line, &SyntaxContext::default());
+        assert!(diagnostics.is_empty(), "{diagnostics:?}");
+        let [Statement::Jump {
+            kind: JumpKind::Gotob,
+            condition: Some(condition),
+            ..
+        }] = block.statements.as_slice()
+        else {
+            panic!("expected one conditional jump, got {:?}", block.statements);
+        };
+        let span = block.expr(*condition).span;
+        assert_eq!(&line[span.start()..span.end()], "R1<3");
+        let (block, _) = parse_line("GOTOF END", &SyntaxContext::default());
+        assert!(matches!(
+            block.statements.as_slice(),
+            [Statement::Jump {
+                condition: None,
+                ..
+            }]
+        ));
     }
 }
