@@ -622,12 +622,17 @@ impl<'a> Engine<'a> {
                         match rotation_in_plane {
                             None => Some(Frame::IDENTITY),
                             Some(None) => None,
-                            Some(Some(degrees)) => match self.state.plane_index() {
-                                Some(0) => Some(Frame::rotation_in_plane(0, 1, degrees)),
-                                Some(1) => Some(Frame::rotation_in_plane(2, 0, degrees)),
-                                Some(2) => Some(Frame::rotation_in_plane(1, 2, degrees)),
-                                _ => None,
-                            },
+                            Some(Some(degrees)) => {
+                                self.state.plane_axis_names().map(|(first, second)| {
+                                    let slot = |name: &str| {
+                                        ["X", "Y", "Z"]
+                                            .iter()
+                                            .position(|axis| *axis == name)
+                                            .unwrap_or(0)
+                                    };
+                                    Frame::rotation_in_plane(slot(first), slot(second), degrees)
+                                })
+                            }
                         }
                     }
                 }
@@ -886,15 +891,11 @@ impl<'a> Engine<'a> {
 
     /// The configuration indexes of the plane's first and second axis (G17: X, Y; G18: Z, X; G19: Y, Z).
     fn plane_axes(&self) -> (Option<usize>, Option<usize>) {
-        let (first, second) = match self.state.active_name(6).as_str() {
-            "G17" => ("X", "Y"),
-            "G18" => ("Z", "X"),
-            "G19" => ("Y", "Z"),
+        match self.state.plane_axis_names() {
+            Some((first, second)) => (self.axis_index(first), self.axis_index(second)),
             // The plane is inherited from an unseen caller.
-            _ => return (None, None),
-        };
-        let find = |name: &str| self.axis_index(name);
-        (find(first), find(second))
+            None => (None, None),
+        }
     }
 
     /// Reads I, J or K: incremental from the circle's start unless `=AC` (reference §3.2), converted by
@@ -1136,12 +1137,7 @@ impl<'a> Engine<'a> {
             uncertain,
             arc,
             transverse_as_diameter: shows_diameter == Some(true),
-            plane: match self.state.plane_index() {
-                Some(0) => Some(("X", "Y")),
-                Some(1) => Some(("Z", "X")),
-                Some(2) => Some(("Y", "Z")),
-                _ => None,
-            },
+            plane: self.state.plane_axis_names(),
         }
     }
 }

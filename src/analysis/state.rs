@@ -8,6 +8,10 @@ use crate::syntax::gcodes::GCode;
 /// Number of G groups tracked (the highest group number in the table is below this).
 pub const GROUP_COUNT: usize = 64;
 
+/// The first and second axis of the planes G17, G18 and G19, in that order (reference §6.1). Circles
+/// turn, and polar angles count, from the first axis toward the second.
+pub const PLANE_AXES: [(&str, &str); 3] = [("X", "Y"), ("Z", "X"), ("Y", "Z")];
+
 /// The modal state in effect between two blocks.
 #[derive(Debug, Clone, PartialEq)]
 pub struct ModalState {
@@ -209,6 +213,11 @@ impl ModalState {
             self.groups[group] = None;
         }
         self.poles = [Pole::Unknown; 3];
+    }
+
+    /// The first and second axis of the active plane (see [`PLANE_AXES`]); `None` when inherited.
+    pub fn plane_axis_names(&self) -> Option<(&'static str, &'static str)> {
+        self.plane_index().map(|plane| PLANE_AXES[plane])
     }
 
     /// The active plane as an index: 0 for G17, 1 for G18, 2 for G19; `None` when inherited.
