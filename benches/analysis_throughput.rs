@@ -6,22 +6,11 @@
 
 use sinumerik_lsp::analysis::{analyze_program, ProgramKind};
 use sinumerik_lsp::config::MachineConfig;
-use std::path::Path;
-use std::process::Command;
 use std::time::Instant;
 
-fn generate(style: &str, line_count: usize) -> Option<String> {
-    let generator = Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/bench/gen_program.py");
-    let output = Command::new("python3")
-        .arg(generator)
-        .args(["--lines", &line_count.to_string(), "--style", style])
-        .output()
-        .ok()?;
-    output
-        .status
-        .success()
-        .then(|| String::from_utf8_lossy(&output.stdout).into_owned())
-}
+#[path = "../tests/support/generated.rs"]
+mod generated;
+use generated::generate;
 
 fn main() {
     let line_count: usize = std::env::var("BENCH_LINES")

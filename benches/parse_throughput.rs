@@ -7,25 +7,11 @@
 
 use sinumerik_lsp::config::MachineConfig;
 use sinumerik_lsp::syntax::{lines, Block, LineParser, SyntaxContext};
-use std::path::Path;
-use std::process::Command;
 use std::time::Instant;
 
-fn generate(style: &str, line_count: usize) -> Option<String> {
-    let generator = Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/bench/gen_program.py");
-    if !generator.exists() {
-        return None;
-    }
-    let output = Command::new("python3")
-        .arg(&generator)
-        .args(["--lines", &line_count.to_string(), "--style", style])
-        .output()
-        .ok()?;
-    if !output.status.success() {
-        return None;
-    }
-    String::from_utf8(output.stdout).ok()
-}
+#[path = "../tests/support/generated.rs"]
+mod generated;
+use generated::generate;
 
 /// Parses every line once; returns the number of diagnostics so the work cannot be optimised away.
 fn parse_all(text: &str, context: &SyntaxContext) -> usize {

@@ -6,6 +6,10 @@ use sinumerik_lsp::config::MachineConfig;
 use sinumerik_lsp::syntax::{lines, Block, LineParser, SyntaxContext};
 use std::path::{Path, PathBuf};
 
+#[path = "support/generated.rs"]
+mod generated;
+use generated::generate;
+
 fn assert_same(line: &str, context: &SyntaxContext, parser: &mut LineParser) {
     let mut fast = Block::default();
     let mut fast_diagnostics = Vec::new();
@@ -115,26 +119,13 @@ fn tricky_lines_agree() {
     assert_same(&long, &mill, &mut parser);
 }
 
-fn generate(style: &str) -> Option<String> {
-    let generator = Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/bench/gen_program.py");
-    let output = std::process::Command::new("python3")
-        .arg(generator)
-        .args(["--lines", "20000", "--style", style])
-        .output()
-        .ok()?;
-    output
-        .status
-        .success()
-        .then(|| String::from_utf8_lossy(&output.stdout).into_owned())
-}
-
 #[test]
 fn generated_programs_agree() {
     let mill = SyntaxContext::new(&MachineConfig::mill());
     let turn = SyntaxContext::new(&MachineConfig::turn());
     let mut checked = 0;
     for style in ["cam3d", "inc", "turning", "mixed"] {
-        match generate(style) {
+        match generate(style, 20_000) {
             Some(text) => {
                 checked += check_text(&text, if style == "turning" { &turn } else { &mill })
             }
