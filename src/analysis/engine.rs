@@ -116,6 +116,12 @@ impl<'a> Engine<'a> {
         }
     }
 
+    /// Whether a label, jump or control structure has been passed, so that values may not follow the
+    /// control's path through the program.
+    pub fn flow_uncertain(&self) -> bool {
+        self.flow_uncertain
+    }
+
     /// The state comes from a caller the engine cannot see: a feed may be active, so a feed move without
     /// F is not reported.
     pub fn assume_inherited_state(&mut self) {

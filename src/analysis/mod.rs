@@ -9,6 +9,7 @@
 //! (everything after a jump or control structure, because the engine evaluates in program order).
 
 pub mod circle;
+pub mod document;
 pub mod engine;
 pub mod eval;
 pub mod frame;
