@@ -90,6 +90,49 @@ pub struct BlockReport {
     pub after: StateSummary,
     /// The block's move, when it moves axes.
     pub movement: Option<Move>,
+    /// How each axis word of the block resolves, in the order written.
+    pub words: Vec<WordResolution>,
+}
+
+/// How the value of an axis word is read (reference §3).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum ResolutionMode {
+    /// Modal G90: the value is the end point.
+    Absolute,
+    /// Modal G91: the value is added to the last position.
+    Incremental,
+    /// A non-modal override written on the word: `AC`, `IC`, `DC`, `ACP`, `ACN`, `DAC`, `DIC`, `RAC`,
+    /// `RIC`, `CAC`, `CIC`, `CACP`, `CACN`, `CDC`.
+    Override(crate::syntax::ast::Modifier),
+    /// G53, G153 or SUPA in the block: the value is a machine position.
+    Machine,
+    /// The mode is inherited from an unseen caller (a subprogram that has not programmed G90/G91).
+    Unknown,
+}
+
+/// The resolution of one axis word, with the steps a person needs to follow it.
+#[derive(Debug, Clone, PartialEq)]
+pub struct WordResolution {
+    /// The word's byte span within the line.
+    pub span: crate::diagnostics::Span,
+    /// The axis name in upper case (`X`, `Z1`).
+    pub axis: String,
+    /// The value as written (after evaluating an expression), in the program's units; `None` when it
+    /// depends on something unknown.
+    pub programmed: Option<f64>,
+    pub mode: ResolutionMode,
+    /// The factor from program units to the basic system (25.4 under G70 on a metric machine).
+    pub unit_factor: Option<f64>,
+    /// Whether the value was read as a diameter (DIAMON, DIAM90 absolute, DAC, DIC).
+    pub read_as_diameter: bool,
+    /// The axis position before the block, as the program shows it (a diameter under DIAMON).
+    pub start: Option<f64>,
+    /// The resolved end point, as the program shows it.
+    pub end: Option<f64>,
+    /// The end point after the programmable frame (machine coordinates, a radius on transverse axes).
+    pub machine: Option<f64>,
+    /// Why the end point is unknown, when it is.
+    pub unknown_reason: Option<String>,
 }
 
 /// The analysis of a document.
@@ -183,6 +226,7 @@ impl DocumentAnalysis {
             before: before.unwrap_or_else(|| after.clone()),
             after,
             movement,
+            words: Vec::new(),
         }
     }
 
