@@ -230,8 +230,9 @@ export function panBy(view: View, dx: number, dy: number): View {
   return { scale: view.scale, offsetX: view.offsetX + dx, offsetY: view.offsetY + dy };
 }
 
-/** Moves the view as little as needed so that the world point is inside the screen, with a margin. */
-export function revealPoint(view: View, x: number, y: number, width: number, height: number, margin = 40): View {
+/** Centres the world point when it is off screen (closer to an edge than `margin`, which is less than
+ * fitView's margin so that a fitted drawing never moves). */
+export function revealPoint(view: View, x: number, y: number, width: number, height: number, margin = 10): View {
   const [sx, sy] = toScreen(view, x, y);
   let dx = 0;
   let dy = 0;

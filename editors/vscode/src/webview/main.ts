@@ -31,6 +31,8 @@ const state = {
   packed: emptyPacked(),
   projected: project(emptyPacked(), 'G17'),
   view: null as View | null,
+  /** The user panned or zoomed: new data no longer refits the view. */
+  userMoved: false,
   cursorLine: 0,
   done: false,
   error: '',
@@ -53,7 +55,9 @@ function reproject(): void {
   state.packed = concatPacked(state.parts.length ? state.parts : [emptyPacked()]);
   state.parts = state.packed.count ? [state.packed] : [];
   state.projected = project(state.packed, chosenPlane());
-  if (!state.view && state.projected.bounds) state.view = fitView(state.projected.bounds, state.width, state.height);
+  if ((!state.view || !state.userMoved) && state.projected.bounds) {
+    state.view = fitView(state.projected.bounds, state.width, state.height);
+  }
 }
 
 let frameRequested = false;
@@ -124,7 +128,10 @@ window.addEventListener('message', (event: MessageEvent<ToPage>) => {
   switch (message.type) {
     case 'reset':
       // Another program starts with a fitted view; the same program after an edit keeps the user's view.
-      if (message.title !== state.title) state.view = null;
+      if (message.title !== state.title) {
+        state.view = null;
+        state.userMoved = false;
+      }
       state.generation = message.generation;
       state.title = message.title;
       state.units = message.units;
@@ -183,6 +190,7 @@ canvas.addEventListener('pointermove', (event) => {
     const dy = event.offsetY - drag.y;
     if (drag.moved || Math.abs(dx) + Math.abs(dy) > 3) {
       drag.moved = true;
+      state.userMoved = true;
       state.view = panBy(view, dx, dy);
       drag.x = event.offsetX;
       drag.y = event.offsetY;
@@ -220,6 +228,7 @@ canvas.addEventListener(
   (event) => {
     event.preventDefault();
     if (!state.view) return;
+    state.userMoved = true;
     state.view = zoomAt(state.view, Math.exp(-event.deltaY * 0.0015), event.offsetX, event.offsetY);
     scheduleDraw();
   },
@@ -240,6 +249,7 @@ window.addEventListener('keydown', (event) => {
   if (event.key === 'f' || event.key === 'F') {
     fit();
   } else if (keys[event.key]) {
+    state.userMoved = true;
     state.view = keys[event.key]();
     scheduleDraw();
   }

@@ -31,9 +31,9 @@ export interface Style {
 /** Four styles: feed, rapid, and both when a plane coordinate is uncertain. */
 export const STYLES: Record<'feed' | 'rapid' | 'uncertainFeed' | 'uncertainRapid' | 'highlight', Style> = {
   feed: { colour: '#3b8eea', width: 1.5, dash: [] },
-  rapid: { colour: '#e05252', width: 1, dash: [6, 4] },
+  rapid: { colour: '#e05252', width: 1.5, dash: [6, 4] },
   uncertainFeed: { colour: '#d7a600', width: 1.5, dash: [2, 3] },
-  uncertainRapid: { colour: '#d7a600', width: 1, dash: [6, 3, 2, 3] },
+  uncertainRapid: { colour: '#d7a600', width: 1.5, dash: [6, 3, 2, 3] },
   highlight: { colour: '#ffd500', width: 4, dash: [] },
 };
 

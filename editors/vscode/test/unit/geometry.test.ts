@@ -70,6 +70,7 @@ test('fit, zoom and the screen transform agree', () => {
   assert.deepEqual(toWorld(zoomed, 300, 200), toWorld(view, 300, 200), 'the point under the pointer stays');
   assert.equal(zoomed.scale, 20);
   assert.equal(revealPoint(view, 30, 20, 820, 620), view, 'a visible point does not move the view');
+  assert.equal(revealPoint(view, 70, -10, 820, 620), view, 'neither does a point of the fitted drawing');
   const moved = revealPoint(view, 500, 20, 820, 620);
   assert.deepEqual(toScreen(moved, 500, 20)[0], 410);
 });
