@@ -42,7 +42,10 @@ export async function launch({ width = 900, height = 640 } = {}) {
   });
   const exited = new Promise((resolve) => browser.on('exit', resolve));
   browser.on('error', (error) => {
-    for (const { reject } of pending.values()) reject(error);
+    const reason = error.code === 'ENOENT'
+      ? new Error(`${findChromium()} was not found: install Debian's chromium (apt-get install chromium) or set CHROMIUM_BIN`)
+      : error;
+    for (const { reject } of pending.values()) reject(reason);
   });
   const send = (method, params = {}, sessionId) =>
     new Promise((resolve, reject) => {
