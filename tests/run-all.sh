@@ -11,16 +11,7 @@ cargo test --release
 cargo build --release
 export SINUMERIK_LSP_BIN="$PWD/target/release/sinumerik-lsp"
 
-echo "== editor test tools"
-missing=()
-command -v nvim >/dev/null || missing+=(neovim)
-command -v "${CHROMIUM_BIN:-chromium}" >/dev/null || missing+=(chromium)
-if ((${#missing[@]})); then
-  echo "installing ${missing[*]} with apt-get"
-  apt-get update -q
-  DEBIAN_FRONTEND=noninteractive apt-get install -y -q "${missing[@]}"
-fi
-
+# The page test installs Debian's chromium and the Neovim test Debian's neovim when they are missing.
 echo "== VS Code extension (editors/vscode)"
 (
   cd editors/vscode
@@ -31,6 +22,5 @@ echo "== VS Code extension (editors/vscode)"
   npm run package
 )
 
-echo "== Neovim plugin (editors/neovim), $(nvim --version | head -n 1)"
-timeout 300 nvim --headless -u NONE -i NONE -n --cmd 'set rtp+=editors/neovim' \
-  -c 'luafile editors/neovim/test/e2e.lua'
+echo "== Neovim plugin (editors/neovim)"
+bash editors/neovim/test/run.sh
