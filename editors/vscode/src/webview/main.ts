@@ -35,6 +35,13 @@ const state = {
   userMoved: false,
   cursorLine: 0,
   done: false,
+  /** Parts are drawn as they arrive (a new program), or collected in `incoming` (an edit). */
+  progressive: true,
+  incoming: [] as PackedToolpath[],
+  /** Moves of the current load that arrived so far. */
+  arrived: 0,
+  projectedAt: 0,
+  projectPending: false,
   error: '',
   stats: null as RenderStats | null,
   renderMs: 0,
@@ -52,6 +59,8 @@ function chosenPlane(): Plane {
 }
 
 function reproject(): void {
+  state.projectedAt = performance.now();
+  state.projectPending = false;
   state.packed = concatPacked(state.parts.length ? state.parts : [emptyPacked()]);
   state.parts = state.packed.count ? [state.packed] : [];
   state.projected = project(state.packed, chosenPlane());
@@ -96,7 +105,8 @@ function updateStatus(highlight: [number, number]): void {
   }
   const p = state.projected;
   const parts = [
-    `${state.title}: ${state.packed.count.toLocaleString('en')} moves${state.done ? '' : ' (loading…)'}`,
+    `${state.title}: ${state.packed.count.toLocaleString('en')} moves` +
+      (state.done ? '' : state.progressive ? ' (loading…)' : ` (updating after the edit: ${state.arrived.toLocaleString('en')} moves so far)`),
     `plane ${p.plane} ${PLANE_NAMES[p.plane]}`,
     state.units,
   ];
@@ -127,7 +137,10 @@ window.addEventListener('message', (event: MessageEvent<ToPage>) => {
   const message = event.data;
   switch (message.type) {
     case 'reset':
-      // Another program starts with a fitted view; the same program after an edit keeps the user's view.
+      // Another program is drawn as its parts arrive, in a fitted view. The same program after an
+      // edit keeps the user's view and the old drawing until the new one is complete, so that
+      // typing in a long program does not make the picture flicker.
+      state.progressive = message.title !== state.title || state.packed.count === 0 || state.error !== '';
       if (message.title !== state.title) {
         state.view = null;
         state.userMoved = false;
@@ -136,19 +149,34 @@ window.addEventListener('message', (event: MessageEvent<ToPage>) => {
       state.title = message.title;
       state.units = message.units;
       state.serverPlane = message.plane;
-      state.parts = [];
+      state.incoming = [];
+      state.arrived = 0;
       state.done = false;
       state.error = '';
-      reproject();
+      if (state.progressive) {
+        state.parts = [];
+        reproject();
+      }
       break;
     case 'append':
       if (message.generation !== state.generation) return;
-      state.parts.push(message.packed);
-      reproject();
+      state.arrived += message.packed.count;
+      if (state.progressive) {
+        state.parts.push(message.packed);
+        // Projecting everything again costs time in proportion to the moves so far: at most about
+        // once a second while a long program arrives.
+        if (performance.now() - state.projectedAt > 1000 || state.parts.length === 1) reproject();
+        else state.projectPending = true;
+      } else {
+        state.incoming.push(message.packed);
+      }
       break;
     case 'done':
       if (message.generation !== state.generation) return;
       state.done = true;
+      if (!state.progressive) state.parts = state.incoming;
+      state.incoming = [];
+      if (!state.progressive || state.projectPending) reproject();
       break;
     case 'error':
       if (message.generation !== state.generation) return;

@@ -19,11 +19,12 @@ let generation = 1000;
 const harness = {
   sent,
   /** Loads a preview answer (the JSON of `sinumerik-lsp preview`) in ranges of `chunkLines`. */
-  async loadPreview(answer: unknown, title: string, lineCount: number, plane: PlaneName | null, chunkLines = 4) {
+  async loadPreview(answer: unknown, title: string, lineCount: number, plane: PlaneName | null, chunkLines = 4, delayMs = 0) {
     // Answers like a server with an inclusive end line, so that the page is fed in several parts.
     const whole = answer as { moves: { line: number }[] };
     const executePreview = async (args: unknown[]) => {
       const { startLine, endLine } = args[0] as { startLine: number; endLine: number };
+      if (delayMs) await new Promise((resolve) => setTimeout(resolve, delayMs));
       return { ...whole, moves: whole.moves.filter((move) => move.line - 1 >= startLine && move.line - 1 <= endLine) };
     };
     const loader = new ToolpathLoader({ executePreview, post, chunkLines });

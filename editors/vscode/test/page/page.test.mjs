@@ -217,6 +217,24 @@ test('the drawing matches the committed screenshot outline', async () => {
   assert.ok(differing <= 12, `${differing} of 1350 cells differ from the baseline:\n${grid.join('\n')}`);
 });
 
+test('after an edit the old drawing stays until the new one is complete', async () => {
+  const preview = JSON.parse(fs.readFileSync(path.join(root, 'test', 'fixtures', 'demo_mill.preview.json'), 'utf8'));
+  // The edit removed the blocks after the label.
+  const edited = { ...preview, moves: preview.moves.filter((move) => move.line < 24) };
+  const loading = page.evaluate(`harness.loadPreview(${JSON.stringify(edited)}, 'demo_mill.mpf', 24, null, 6, 150)`);
+  await until('!toolpathDebug.state.done', 'the update to start');
+  await page.evaluate('toolpathDebug.redrawNow()');
+  const during = await page.evaluate('({ count: toolpathDebug.state.packed.count, status: document.getElementById("status").textContent })');
+  assert.equal(during.count, 23, 'the old drawing is still shown');
+  assert.match(during.status, /updating after the edit/);
+  await loading;
+  await until('toolpathDebug.state.done', 'the update');
+  await page.evaluate('toolpathDebug.redrawNow()');
+  assert.equal(await page.evaluate('toolpathDebug.state.packed.count'), 20);
+  const [ux, uy] = await screen(42.5, 25);
+  assert.ok(!(await hasColour(ux, uy, UNCERTAIN, 3)), 'the removed uncertain move is gone');
+});
+
 test('a million moves draw within a frame budget (figures printed)', async () => {
   await page.evaluate('harness.loadSynthetic(1000000)');
   await until('toolpathDebug.state.packed.count === 1000000 && toolpathDebug.state.done', 'a million moves', 60000);
