@@ -3,16 +3,7 @@
 # is missing. The server is SINUMERIK_LSP_BIN, default target/release/sinumerik-lsp of the repository.
 set -euo pipefail
 cd "$(dirname "$0")/../../.."
-if ! command -v nvim >/dev/null; then
-  if [ "$(id -u)" = 0 ] && command -v apt-get >/dev/null; then
-    echo "installing neovim with apt-get for the end-to-end test"
-    apt-get update -q
-    DEBIAN_FRONTEND=noninteractive apt-get install -y -q neovim
-  else
-    echo "the Neovim test needs nvim: run 'sudo apt-get install neovim'" >&2
-    exit 1
-  fi
-fi
+bash editors/install-tool.sh nvim neovim
 echo "$(nvim --version | head -n 1), server ${SINUMERIK_LSP_BIN:-target/release/sinumerik-lsp}"
 # The test stops itself after its waits; the timeout only guards against a Neovim that never starts.
 timeout 300 nvim --headless -u NONE -i NONE -n --cmd 'set rtp+=editors/neovim' \

@@ -39,14 +39,9 @@ function motionIndex(motion: string): number {
   return index < 0 ? MOTIONS.length - 1 : index;
 }
 
-export function emptyPacked(): PackedToolpath {
-  return packMoves([]);
-}
-
-export function packMoves(moves: readonly PreviewMove[]): PackedToolpath {
-  const count = moves.length;
-  const arcCount = moves.reduce((total, move) => total + (move.arc ? 1 : 0), 0);
-  const packed: PackedToolpath = {
+/** Arrays for `count` moves and `arcs` arcs; moves have no arc until one is set. */
+export function allocatePacked(count: number, arcs: number): PackedToolpath {
+  return {
     count,
     line: new Uint32Array(count),
     motion: new Uint8Array(count),
@@ -54,11 +49,21 @@ export function packMoves(moves: readonly PreviewMove[]): PackedToolpath {
     start: new Float64Array(count * 3),
     end: new Float64Array(count * 3),
     feed: new Float64Array(count),
-    arcOf: new Int32Array(count),
-    arcCentre: new Float64Array(arcCount * 3),
-    arcRadius: new Float64Array(arcCount),
-    arcSweep: new Float64Array(arcCount),
+    arcOf: new Int32Array(count).fill(-1),
+    arcCentre: new Float64Array(arcs * 3),
+    arcRadius: new Float64Array(arcs),
+    arcSweep: new Float64Array(arcs),
   };
+}
+
+export function emptyPacked(): PackedToolpath {
+  return allocatePacked(0, 0);
+}
+
+export function packMoves(moves: readonly PreviewMove[]): PackedToolpath {
+  const count = moves.length;
+  const arcCount = moves.reduce((total, move) => total + (move.arc ? 1 : 0), 0);
+  const packed = allocatePacked(count, arcCount);
   let arcIndex = 0;
   moves.forEach((move, index) => {
     packed.line[index] = move.line;
@@ -78,8 +83,6 @@ export function packMoves(moves: readonly PreviewMove[]): PackedToolpath {
       packed.arcRadius[arcIndex] = move.arc.radius;
       packed.arcSweep[arcIndex] = move.arc.sweep;
       packed.arcOf[index] = arcIndex++;
-    } else {
-      packed.arcOf[index] = -1;
     }
     packed.flags[index] = flags;
   });
@@ -91,19 +94,7 @@ export function concatPacked(parts: readonly PackedToolpath[]): PackedToolpath {
   if (parts.length === 1) return parts[0];
   const count = parts.reduce((total, part) => total + part.count, 0);
   const arcs = parts.reduce((total, part) => total + part.arcRadius.length, 0);
-  const out: PackedToolpath = {
-    count,
-    line: new Uint32Array(count),
-    motion: new Uint8Array(count),
-    flags: new Uint8Array(count),
-    start: new Float64Array(count * 3),
-    end: new Float64Array(count * 3),
-    feed: new Float64Array(count),
-    arcOf: new Int32Array(count),
-    arcCentre: new Float64Array(arcs * 3),
-    arcRadius: new Float64Array(arcs),
-    arcSweep: new Float64Array(arcs),
-  };
+  const out = allocatePacked(count, arcs);
   let at = 0;
   let arcAt = 0;
   for (const part of parts) {

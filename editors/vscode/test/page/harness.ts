@@ -3,7 +3,7 @@
 
 import { ToolpathLoader } from '../../src/core/loader';
 import type { FromPage, PlaneName, ToPage } from '../../src/core/messages';
-import { FLAG_RAPID, packMoves, type PackedToolpath } from '../../src/core/packed';
+import { allocatePacked, FLAG_RAPID } from '../../src/core/packed';
 
 const sent: FromPage[] = [];
 (window as unknown as Record<string, unknown>).acquireVsCodeApi = () => ({
@@ -33,19 +33,7 @@ const harness = {
   /** A synthetic program of `count` short feed moves on a spiral with a rapid every 1000 moves,
    * packed directly: the page's cost at a million lines, without a million JSON objects in the test. */
   loadSynthetic(count: number) {
-    const packed: PackedToolpath = packMoves([]);
-    const make = (n: number): PackedToolpath => ({
-      ...packed,
-      count: n,
-      line: new Uint32Array(n),
-      motion: new Uint8Array(n),
-      flags: new Uint8Array(n),
-      start: new Float64Array(n * 3),
-      end: new Float64Array(n * 3),
-      feed: new Float64Array(n),
-      arcOf: new Int32Array(n).fill(-1),
-    });
-    const p = make(count);
+    const p = allocatePacked(count, 0);
     let x = 0;
     let y = 0;
     for (let i = 0; i < count; i++) {

@@ -1,6 +1,6 @@
 import assert from 'node:assert/strict';
 import { test } from 'node:test';
-import { FLAG_RAPID, packMoves, type PackedToolpath } from '../../src/core/packed';
+import { allocatePacked, FLAG_RAPID, packMoves, type PackedToolpath } from '../../src/core/packed';
 import { parsePreview } from '../../src/core/preview';
 import { fitView, project, segmentsOfLine, toScreen, zoomAt } from '../../src/webview/geometry';
 import { render, STYLES, type CanvasLike, type PathLike } from '../../src/webview/render';
@@ -67,11 +67,7 @@ test('zoomed in on a corner, chunks off screen are skipped', () => {
 
 /** Short feed moves on a growing spiral with a rapid every 1000 moves. */
 function synthetic(count: number): PackedToolpath {
-  const packed = packMoves([]);
-  const p: PackedToolpath = {
-    ...packed, count, line: new Uint32Array(count), motion: new Uint8Array(count), flags: new Uint8Array(count),
-    start: new Float64Array(count * 3), end: new Float64Array(count * 3), feed: new Float64Array(count), arcOf: new Int32Array(count).fill(-1),
-  };
+  const p = allocatePacked(count, 0);
   let x = 10;
   let y = 0;
   for (let i = 0; i < count; i++) {
