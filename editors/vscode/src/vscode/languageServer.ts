@@ -5,9 +5,10 @@ import * as fs from 'node:fs';
 import * as vscode from 'vscode';
 import { LanguageClient, type LanguageClientOptions, type ServerOptions } from 'vscode-languageclient/node';
 import { locateServer } from '../core/serverPath';
+import { LANGUAGE_ID } from '../core/language';
 import { changeNeeds, serverSettings, type ServerSettings } from '../core/settings';
+import type { ServerHandle } from './serverHandle';
 
-export const LANGUAGE_ID = 'sinumerik';
 
 function isExecutable(file: string): boolean {
   try {
@@ -23,7 +24,7 @@ function currentSettings(): ServerSettings {
   return serverSettings((key) => section.get(key));
 }
 
-export class LanguageServer implements vscode.Disposable {
+export class LanguageServer implements vscode.Disposable, ServerHandle {
   client: LanguageClient | undefined;
   private readonly changed = new vscode.EventEmitter<LanguageClient | undefined>();
   /** Fires when a client started or stopped. */

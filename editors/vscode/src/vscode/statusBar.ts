@@ -2,7 +2,8 @@
 
 import * as vscode from 'vscode';
 import { formatModalState, MODAL_STATE_REQUEST, parseModalState } from '../core/modalState';
-import { LANGUAGE_ID, type LanguageServer } from './languageServer';
+import { LANGUAGE_ID } from '../core/language';
+import type { ServerHandle } from './serverHandle';
 
 export class ModalStatusBar implements vscode.Disposable {
   private readonly item = vscode.window.createStatusBarItem('sinumerik.modalState', vscode.StatusBarAlignment.Right, 100);
@@ -10,7 +11,7 @@ export class ModalStatusBar implements vscode.Disposable {
   private timer: NodeJS.Timeout | undefined;
   private asked = 0;
 
-  constructor(private readonly server: LanguageServer) {
+  constructor(private readonly server: ServerHandle) {
     this.item.name = 'SINUMERIK modal state';
     this.subscriptions.push(
       vscode.window.onDidChangeTextEditorSelection(() => this.schedule()),

@@ -8,7 +8,8 @@ import { ToolpathLoader, PREVIEW_COMMAND } from '../core/loader';
 import type { FromPage, PlaneName, ToPage } from '../core/messages';
 import { MODAL_STATE_REQUEST, parseModalState } from '../core/modalState';
 import { toolpathHtml } from '../webview/html';
-import { LANGUAGE_ID, type LanguageServer } from './languageServer';
+import { LANGUAGE_ID } from '../core/language';
+import type { ServerHandle } from './serverHandle';
 
 const EDIT_DELAY_MS = 400;
 
@@ -20,7 +21,7 @@ export class ToolpathPanel implements vscode.Disposable {
   private editTimer: NodeJS.Timeout | undefined;
   private readonly loader: ToolpathLoader;
 
-  static show(context: vscode.ExtensionContext, server: LanguageServer): void {
+  static show(context: vscode.ExtensionContext, server: ServerHandle): void {
     const editor = vscode.window.activeTextEditor;
     if (!editor || editor.document.languageId !== LANGUAGE_ID) {
       void vscode.window.showInformationMessage('Open a SINUMERIK program (.MPF, .SPF) to show its toolpath.');
@@ -33,7 +34,7 @@ export class ToolpathPanel implements vscode.Disposable {
 
   private readonly panel: vscode.WebviewPanel;
 
-  private constructor(context: vscode.ExtensionContext, private readonly server: LanguageServer) {
+  private constructor(context: vscode.ExtensionContext, private readonly server: ServerHandle) {
     const dist = vscode.Uri.file(path.join(context.extensionPath, 'dist'));
     this.panel = vscode.window.createWebviewPanel(
       'sinumerik.toolpath',
