@@ -115,3 +115,33 @@ export function concatPacked(parts: readonly PackedToolpath[]): PackedToolpath {
   }
   return out;
 }
+
+type TypedArrayConstructor = Uint32ArrayConstructor | Uint8ArrayConstructor | Float64ArrayConstructor | Int32ArrayConstructor;
+
+const FIELDS: [keyof PackedToolpath, TypedArrayConstructor][] = [
+  ['line', Uint32Array], ['motion', Uint8Array], ['flags', Uint8Array], ['start', Float64Array], ['end', Float64Array],
+  ['feed', Float64Array], ['arcOf', Int32Array], ['arcCentre', Float64Array], ['arcRadius', Float64Array], ['arcSweep', Float64Array],
+];
+
+/** The toolpath as it arrived in the page: typed arrays stay as they are; arrays that a message
+ * channel turned into plain arrays or index-keyed objects become typed arrays again. */
+export function revivePacked(value: unknown): PackedToolpath {
+  const record = value as Record<string, unknown>;
+  const out = { count: Number(record.count) || 0 } as PackedToolpath;
+  for (const [name, Type] of FIELDS) {
+    const field = record[name];
+    if (field instanceof Type) {
+      (out as unknown as Record<string, unknown>)[name] = field;
+      continue;
+    }
+    let values: unknown[] = [];
+    if (ArrayBuffer.isView(field)) values = Array.from(field as unknown as ArrayLike<unknown>);
+    else if (Array.isArray(field)) values = field;
+    else if (field && typeof field === 'object') values = Object.values(field);
+    const array = new Type(values.length);
+    // JSON writes NaN (unknown) as null, which must not become 0.
+    values.forEach((item, index) => (array[index] = typeof item === 'number' ? item : NaN));
+    (out as unknown as Record<string, unknown>)[name] = array;
+  }
+  return out;
+}

@@ -2,7 +2,7 @@
 // the next animation frame. The drawing itself is in render.ts and the geometry in geometry.ts.
 
 import type { FromPage, ToPage } from '../core/messages';
-import { concatPacked, emptyPacked, MOTIONS, type PackedToolpath } from '../core/packed';
+import { concatPacked, emptyPacked, MOTIONS, revivePacked, type PackedToolpath } from '../core/packed';
 import {
   fitView, guessPlane, panBy, pick, PLANE_NAMES, project, revealPoint, segmentsOfLine, zoomAt,
   type Plane, type View,
@@ -158,19 +158,21 @@ window.addEventListener('message', (event: MessageEvent<ToPage>) => {
         reproject();
       }
       break;
-    case 'append':
+    case 'append': {
       if (message.generation !== state.generation) return;
-      state.arrived += message.packed.count;
+      const packed = revivePacked(message.packed);
+      state.arrived += packed.count;
       if (state.progressive) {
-        state.parts.push(message.packed);
+        state.parts.push(packed);
         // Projecting everything again costs time in proportion to the moves so far: at most about
         // once a second while a long program arrives.
         if (performance.now() - state.projectedAt > 1000 || state.parts.length === 1) reproject();
         else state.projectPending = true;
       } else {
-        state.incoming.push(message.packed);
+        state.incoming.push(packed);
       }
       break;
+    }
     case 'done':
       if (message.generation !== state.generation) return;
       state.done = true;
