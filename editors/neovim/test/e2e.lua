@@ -42,6 +42,7 @@ end
 local function run()
   vim.cmd('filetype on')
   vim.cmd('filetype plugin on')
+  vim.cmd('syntax on')
   if vim.fn.executable(binary) ~= 1 then
     report(false, 'the server binary exists', binary .. ' is not executable (build it with cargo build --release)')
     return
@@ -52,6 +53,16 @@ local function run()
 
   check('the .mpf file has filetype sinumerik', function()
     return vim.bo[buf].filetype == 'sinumerik', 'filetype is ' .. vim.bo[buf].filetype
+  end)
+  check('the program is highlighted: block number, axis, modifier, G code, comment', function()
+    vim.cmd('syntax on')
+    local function group(line, column)
+      return vim.fn.synIDattr(vim.fn.synID(line, column, 1), 'name')
+    end
+    -- Line 4 is "N20 X75 Z=IC(-32)    ; X stays absolute, ...", line 2 starts "N5 G95".
+    local seen = { group(4, 1), group(4, 5), group(4, 11), group(4, 22), group(2, 4) }
+    local expected = { 'sinumerikBlockNumber', 'sinumerikAxis', 'sinumerikModifier', 'sinumerikComment', 'sinumerikGCode' }
+    return vim.deep_equal(seen, expected), table.concat(seen, ' ')
   end)
   check('comments start with ;', function()
     return vim.bo[buf].commentstring == '; %s', vim.bo[buf].commentstring
@@ -153,12 +164,32 @@ local function run()
       'cursor at ' .. vim.inspect(vim.api.nvim_win_get_cursor(0))
   end)
 
-  check('settings change without a restart', function()
-    local client = require('sinumerik').client(buf)
-    local id = client.id
+  local function inlay_hint_count()
+    local params = {
+      textDocument = { uri = vim.uri_from_bufnr(buf) },
+      range = { start = { line = 0, character = 0 }, ['end'] = { line = 10, character = 0 } },
+    }
+    local count = 0
+    for _, answer in pairs(vim.lsp.buf_request_sync(buf, 'textDocument/inlayHint', params, 10000) or {}) do
+      count = count + #(answer.result or {})
+    end
+    return count
+  end
+
+  check('the settings reach the server, and a change takes effect without a restart', function()
+    local all = inlay_hint_count()
+    if all < 4 then
+      return false, all .. ' inlay hints with inlayHints = all'
+    end
+    local id = require('sinumerik').client(buf).id
     require('sinumerik').update_settings({ inlayHints = 'off' })
-    client = require('sinumerik').client(buf)
-    return client ~= nil and client.id == id and client.config.settings.sinumerik.inlayHints == 'off'
+    local off = all
+    vim.wait(10000, function()
+      off = inlay_hint_count()
+      return off == 0
+    end, 50)
+    local client = require('sinumerik').client(buf)
+    return off == 0 and client.id == id, off .. ' hints after inlayHints = off (client ' .. client.id .. ', was ' .. id .. ')'
   end)
 end
 
