@@ -39,7 +39,11 @@ export function toolpathHtml(options: PageOptions): string {
   #toolbar select, #toolbar button { font: inherit; color: inherit; background: var(--vscode-dropdown-background, #3c3c3c);
     border: 1px solid var(--vscode-dropdown-border, #555); padding: 1px 6px; }
   .legend { display: inline-flex; align-items: center; gap: 4px; }
-  .swatch { display: inline-block; width: 18px; height: 0; border-top-width: 2px; }
+  .swatch { display: inline-block; width: 18px; height: 0; }
+  .swatch.feed { border-top: 2px solid #3b8eea; } .swatch.rapid { border-top: 2px dashed #e05252; }
+  .swatch.uncertain { border-top: 2px dotted #d7a600; } .swatch.cursor { border-top: 3px solid #ffd500; }
+  body.vscode-light .swatch.feed { border-top-color: #0b5cad; } body.vscode-light .swatch.rapid { border-top-color: #c62828; }
+  body.vscode-light .swatch.uncertain { border-top-color: #9a6b00; } body.vscode-light .swatch.cursor { border-top-color: #e07000; }
   #canvas-box { position: relative; flex: 1; min-height: 0; }
   canvas { position: absolute; inset: 0; width: 100%; height: 100%; cursor: crosshair; }
   #status { flex: none; padding: 2px 8px; border-top: 1px solid var(--vscode-panel-border, #444); white-space: nowrap;
@@ -54,10 +58,10 @@ export function toolpathHtml(options: PageOptions): string {
     <option value="auto">auto</option><option value="G17">G17 X/Y</option><option value="G18">G18 Z/X</option><option value="G19">G19 Y/Z</option>
   </select></label>
   <button id="fit" title="Fit the whole toolpath (F)">Fit</button>
-  <span class="legend"><span class="swatch" style="border-top: 2px solid #3b8eea"></span>feed</span>
-  <span class="legend"><span class="swatch" style="border-top: 2px dashed #e05252"></span>rapid</span>
-  <span class="legend"><span class="swatch" style="border-top: 2px dotted #d7a600"></span>uncertain</span>
-  <span class="legend"><span class="swatch" style="border-top: 3px solid #ffd500"></span>cursor</span>
+  <span class="legend"><span class="swatch feed"></span>feed</span>
+  <span class="legend"><span class="swatch rapid"></span>rapid</span>
+  <span class="legend" title="after a label, jump or loop the control may take another path"><span class="swatch uncertain"></span>uncertain</span>
+  <span class="legend"><span class="swatch cursor"></span>cursor</span>
 </div>
 <div id="canvas-box"><canvas id="canvas"></canvas><div id="tip"></div></div>
 <div id="status">Waiting for the language server…</div>

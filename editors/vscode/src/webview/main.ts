@@ -7,7 +7,7 @@ import {
   fitView, guessPlane, panBy, pick, PLANE_NAMES, project, revealPoint, segmentsOfLine, zoomAt,
   type Plane, type View,
 } from './geometry';
-import { render, type RenderStats } from './render';
+import { LIGHT_STYLES, render, STYLES, type RenderStats } from './render';
 
 interface VsCodeApi {
   postMessage(message: FromPage): void;
@@ -93,7 +93,9 @@ function draw(): void {
   const view = state.view ?? fitView(state.projected.bounds, state.width, state.height);
   const started = performance.now();
   const highlight = state.cursorLine ? segmentsOfLine(state.projected, state.cursorLine) : ([0, 0] as [number, number]);
-  state.stats = render(context, () => new Path2D(), state.projected, view, state.width, state.height, background, highlight);
+  // VS Code marks the webview's body with the kind of theme.
+  const light = document.body.classList.contains('vscode-light') || document.body.classList.contains('vscode-high-contrast-light');
+  state.stats = render(context, () => new Path2D(), state.projected, view, state.width, state.height, background, highlight, light ? LIGHT_STYLES : STYLES);
   state.renderMs = performance.now() - started;
   updateStatus(highlight);
 }

@@ -28,8 +28,10 @@ export interface Style {
   dash: number[];
 }
 
-/** Four styles: feed, rapid, and both when a plane coordinate is uncertain. */
-export const STYLES: Record<'feed' | 'rapid' | 'uncertainFeed' | 'uncertainRapid' | 'highlight', Style> = {
+export type Palette = Record<'feed' | 'rapid' | 'uncertainFeed' | 'uncertainRapid' | 'highlight', Style>;
+
+/** For dark themes: feed, rapid, both when a plane coordinate is uncertain, and the cursor's block. */
+export const STYLES: Palette = {
   feed: { colour: '#3b8eea', width: 1.5, dash: [] },
   rapid: { colour: '#e05252', width: 1.5, dash: [6, 4] },
   uncertainFeed: { colour: '#d7a600', width: 1.5, dash: [2, 3] },
@@ -37,7 +39,16 @@ export const STYLES: Record<'feed' | 'rapid' | 'uncertainFeed' | 'uncertainRapid
   highlight: { colour: '#ffd500', width: 4, dash: [] },
 };
 
-export type StyleName = keyof typeof STYLES;
+/** The same styles in darker colours, for light themes. */
+export const LIGHT_STYLES: Palette = {
+  feed: { ...STYLES.feed, colour: '#0b5cad' },
+  rapid: { ...STYLES.rapid, colour: '#c62828' },
+  uncertainFeed: { ...STYLES.uncertainFeed, colour: '#9a6b00' },
+  uncertainRapid: { ...STYLES.uncertainRapid, colour: '#9a6b00' },
+  highlight: { ...STYLES.highlight, colour: '#e07000' },
+};
+
+export type StyleName = keyof Palette;
 
 export function styleOf(kind: number): StyleName {
   if (kind & KIND_UNCERTAIN) return kind & KIND_RAPID ? 'uncertainRapid' : 'uncertainFeed';
@@ -100,6 +111,7 @@ export function render(
   height: number,
   background: string,
   highlight: [number, number] = [0, 0],
+  palette: Palette = STYLES,
 ): RenderStats {
   ctx.clearRect(0, 0, width, height);
   ctx.fillStyle = background;
@@ -135,7 +147,7 @@ export function render(
     }
   }
   for (const [name, pen] of pens) {
-    const style = STYLES[name];
+    const style = palette[name];
     ctx.strokeStyle = style.colour;
     ctx.lineWidth = style.width;
     ctx.setLineDash(style.dash);
@@ -145,7 +157,7 @@ export function render(
   if (end > first) {
     const pen = new Pen(newPath());
     for (let s = first; s < end; s++) addSegment(p, view, s, pen);
-    const style = STYLES.highlight;
+    const style = palette.highlight;
     ctx.strokeStyle = style.colour;
     ctx.lineWidth = style.width;
     ctx.setLineDash(style.dash);

@@ -3,7 +3,7 @@ import { test } from 'node:test';
 import { allocatePacked, FLAG_RAPID, packMoves, type PackedToolpath } from '../../src/core/packed';
 import { parsePreview } from '../../src/core/preview';
 import { fitView, project, segmentsOfLine, toScreen, zoomAt } from '../../src/webview/geometry';
-import { render, STYLES, type CanvasLike, type PathLike } from '../../src/webview/render';
+import { LIGHT_STYLES, render, STYLES, type CanvasLike, type PathLike } from '../../src/webview/render';
 import { readFixture } from './fixtures';
 
 interface Command { op: string; args: number[] }
@@ -52,6 +52,14 @@ test('the demo program draws feeds solid, rapids dashed, arcs as arcs and the cu
   assert.equal(last.colour, STYLES.highlight.colour, 'the highlight is drawn last');
   assert.equal(last.path.commands.filter((c) => c.op === 'ellipse').length, 1);
   assert.equal(canvas.fills, 2, 'background and the end-point marker');
+});
+
+test('a light theme draws with the light palette', () => {
+  const p = demo();
+  const canvas = new RecordingCanvas();
+  render(canvas, () => new RecordingPath(), p, fitView(p.bounds, 820, 620, 10), 820, 620, '#fff', segmentsOfLine(p, 8), LIGHT_STYLES);
+  const colours = new Set(canvas.strokes.map((s) => s.colour));
+  assert.deepEqual(colours, new Set([LIGHT_STYLES.feed.colour, LIGHT_STYLES.rapid.colour, LIGHT_STYLES.uncertainFeed.colour, LIGHT_STYLES.highlight.colour]));
 });
 
 test('zoomed in on a corner, chunks off screen are skipped', () => {
