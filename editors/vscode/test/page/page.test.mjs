@@ -217,6 +217,15 @@ test('the drawing matches the committed screenshot outline', async () => {
   assert.ok(differing <= 12, `${differing} of 1350 cells differ from the baseline:\n${grid.join('\n')}`);
 });
 
+test('in a light theme the page draws with the light palette', async () => {
+  await page.evaluate('document.body.classList.add("vscode-light"); document.body.style.background = "#ffffff"; toolpathDebug.redrawNow()');
+  const [sx, sy] = await screen(30, 0);
+  assert.ok(await hasColour(sx, sy, hex('#0b5cad')), 'dark blue feed on white');
+  const [bx, by] = await screen(22, 42);
+  assert.ok((await colours(bx, by, 2)).every((c) => near(c, [255, 255, 255], 10)), 'the theme background');
+  await page.evaluate('document.body.classList.remove("vscode-light"); document.body.style.background = ""; toolpathDebug.redrawNow()');
+});
+
 test('after an edit the old drawing stays until the new one is complete', async () => {
   const preview = JSON.parse(fs.readFileSync(path.join(root, 'test', 'fixtures', 'demo_mill.preview.json'), 'utf8'));
   // The edit removed the blocks after the label.
