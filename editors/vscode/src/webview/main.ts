@@ -2,9 +2,9 @@
 // the next animation frame. The drawing itself is in render.ts and the geometry in geometry.ts.
 
 import type { FromPage, ToPage } from '../core/messages';
-import { concatPacked, emptyPacked, MOTIONS, revivePacked, type PackedToolpath } from '../core/packed';
+import { AXES, concatPacked, emptyPacked, FLAG_UNCERTAIN_X, MOTIONS, revivePacked, type PackedToolpath } from '../core/packed';
 import {
-  fitView, guessPlane, panBy, pick, PLANE_NAMES, project, revealPoint, segmentsOfLine, zoomAt,
+  fitView, guessPlane, KIND_UNCERTAIN, panBy, pick, PLANE_NAMES, project, revealPoint, segmentsOfLine, zoomAt,
   type Plane, type View,
 } from './geometry';
 import { LIGHT_STYLES, render, STYLES, type RenderStats } from './render';
@@ -125,13 +125,17 @@ function describe(segment: number): string {
   const p = state.projected;
   const move = p.moveIndex[segment];
   const packed = state.packed;
-  const end = ['X', 'Y', 'Z']
-    .map((axis, k) => [axis, packed.end[move * 3 + k]] as const)
-    .filter(([, value]) => !Number.isNaN(value))
-    .map(([axis, value]) => `${axis}${Number(value.toFixed(4))}`)
+  // An axis left out of the end point is unknown when the server names it uncertain; otherwise the
+  // machine does not have it.
+  const end = AXES.map((axis, k) => {
+    const value = packed.end[move * 3 + k];
+    if (!Number.isNaN(value)) return `${axis}${Number(value.toFixed(4))}`;
+    return packed.flags[move] & (FLAG_UNCERTAIN_X << k) ? `${axis} unknown` : '';
+  })
+    .filter((text) => text !== '')
     .join(' ');
   const feed = Number.isNaN(packed.feed[move]) ? '' : ` F${packed.feed[move]}`;
-  const uncertain = p.kind[segment] & 2 ? '\nuncertain: the control may take another path here' : '';
+  const uncertain = p.kind[segment] & KIND_UNCERTAIN ? '\nuncertain: the control may take another path here' : '';
   return `line ${p.line[segment]}  ${MOTIONS[packed.motion[move]]}  → ${end}${feed}${uncertain}`;
 }
 
