@@ -91,7 +91,8 @@ test('the toolpath loaded range by range equals the CLI preview of the same prog
 test('the status bar request gives the modal state at a line', async (t) => {
   let answer: unknown;
   try {
-    answer = await connection.sendRequest(MODAL_STATE_REQUEST, { uri: demoUri, line: 8 });
+    // Line 6 is "N60 G1 X60" after "N50 G1 X10 Y0 F500": G1 before and after the block.
+    answer = await connection.sendRequest(MODAL_STATE_REQUEST, { uri: demoUri, line: 6 });
   } catch (error) {
     if ((error as { code?: number }).code === -32601) {
       t.skip('the server does not implement sinumerik/modalState yet: the status bar stays hidden');
@@ -101,7 +102,7 @@ test('the status bar request gives the modal state at a line', async (t) => {
   }
   const state = parseModalState(answer);
   assert.ok(state, `answer ${JSON.stringify(answer)}`);
-  assert.equal(formatModalState(state, 8).text, 'G90 G71 G17 G3');
+  assert.equal(formatModalState(state, 6).text, 'G90 G71 G17 G1');
 });
 
 async function inlayHintCount(): Promise<number> {
