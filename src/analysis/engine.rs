@@ -89,6 +89,8 @@ pub struct Engine<'a> {
     axis_names: Vec<Arc<str>>,
     /// The positions before the current block, kept in one buffer for all blocks.
     start_positions: Vec<Option<f64>>,
+    /// The circle of the block last applied, for its move.
+    last_arc: Option<crate::analysis::circle::Circle>,
 }
 
 /// The non-modal G functions of one block that change what its axis words mean.
@@ -113,6 +115,7 @@ impl<'a> Engine<'a> {
                 .map(|axis| Arc::from(axis.name.as_str()))
                 .collect(),
             start_positions: Vec::with_capacity(config.axes.len()),
+            last_arc: None,
         }
     }
 
@@ -138,8 +141,17 @@ impl<'a> Engine<'a> {
         block: &Block,
         diagnostics: &mut Vec<Diagnostic>,
     ) -> Option<Move> {
+        self.step(line, block, diagnostics)
+            .then(|| self.describe_last_move(line_index, line, block))
+    }
+
+    /// Applies `block` like [`Engine::apply`] but only says whether it moved axes: building the move is
+    /// left to [`Engine::describe_last_move`], so that callers that need only diagnostics pay nothing
+    /// for it.
+    pub fn step(&mut self, line: &str, block: &Block, diagnostics: &mut Vec<Diagnostic>) -> bool {
+        self.last_arc = None;
         if block.is_header {
-            return None;
+            return false;
         }
         let statements = block.interpreted_statements();
         // A label may be the target of a backward jump and a structure keyword opens a loop or branch:
@@ -366,16 +378,8 @@ impl<'a> Engine<'a> {
         if moved && functions.frame_or_pole.is_none() && !functions.dwell {
             self.check_feed(&motion, statements, diagnostics);
         }
-        let result = (moved && functions.frame_or_pole.is_none() && !functions.dwell).then(|| {
-            self.describe_move(
-                line_index,
-                line,
-                block,
-                &start_positions,
-                motion.clone(),
-                arc,
-            )
-        });
+        let result = moved && functions.frame_or_pole.is_none() && !functions.dwell;
+        self.last_arc = arc;
         self.start_positions = start_positions;
         if forget_after {
             // The callee may have programmed a feed, so a later feed move without F is not reported.
@@ -1076,15 +1080,13 @@ impl<'a> Engine<'a> {
         ));
     }
 
-    fn describe_move(
-        &self,
-        line_index: usize,
-        line: &str,
-        block: &Block,
-        start_positions: &[Option<f64>],
-        motion: Cow<'static, str>,
-        arc: Option<crate::analysis::circle::Circle>,
-    ) -> Move {
+    /// The move of the block last applied with [`Engine::step`], which returned true for it.
+    pub fn describe_last_move(&self, line_index: usize, line: &str, block: &Block) -> Move {
+        let motion = self.state.groups[1]
+            .map(GCode::name)
+            .unwrap_or(Cow::Borrowed(""));
+        let start_positions = &self.start_positions;
+        let arc = self.last_arc;
         let shows_diameter = self.state.shows_diameter();
         // How the program shows a value; unknown for a transverse axis while the diameter mode is.
         let display = |index: usize, value: f64| -> Option<f64> {
