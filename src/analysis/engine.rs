@@ -93,6 +93,16 @@ pub struct Engine<'a> {
     last_arc: Option<crate::analysis::circle::Circle>,
 }
 
+/// What an [`Engine`] carries from one block to the next, detached from the configuration: a
+/// checkpoint from which the analysis of a document is replayed after an edit or for a hover. Two
+/// equal snapshots make every later block resolve the same way.
+#[derive(Debug, Clone, PartialEq)]
+pub struct EngineSnapshot {
+    state: ModalState,
+    flow_uncertain: bool,
+    missing_feed_reported: bool,
+}
+
 /// The non-modal G functions of one block that change what its axis words mean.
 #[derive(Default)]
 struct BlockFunctions {
@@ -116,6 +126,34 @@ impl<'a> Engine<'a> {
                 .collect(),
             start_positions: Vec::with_capacity(config.axes.len()),
             last_arc: None,
+        }
+    }
+
+    /// The state between blocks, to continue from later with [`Engine::from_snapshot`].
+    pub fn snapshot(&self) -> EngineSnapshot {
+        EngineSnapshot {
+            state: self.state.clone(),
+            flow_uncertain: self.flow_uncertain,
+            missing_feed_reported: self.missing_feed_reported,
+        }
+    }
+
+    /// Whether the engine is in the state `snapshot` holds: then every later block resolves as it did
+    /// from there.
+    pub fn matches(&self, snapshot: &EngineSnapshot) -> bool {
+        self.flow_uncertain == snapshot.flow_uncertain
+            && self.missing_feed_reported == snapshot.missing_feed_reported
+            && self.state == snapshot.state
+    }
+
+    /// An engine that continues where `snapshot` was taken, on the same configuration.
+    pub fn from_snapshot(config: &'a MachineConfig, snapshot: EngineSnapshot) -> Engine<'a> {
+        let engine = Engine::new(config);
+        Engine {
+            state: snapshot.state,
+            flow_uncertain: snapshot.flow_uncertain,
+            missing_feed_reported: snapshot.missing_feed_reported,
+            ..engine
         }
     }
 
@@ -1171,7 +1209,7 @@ fn evaluate_or_report(
 }
 
 /// The axis name of a word: the letter and its numeric extension (`X`, `X1`), or the whole name.
-fn axis_name(line: &str, word: &AddressWord) -> String {
+pub(crate) fn axis_name(line: &str, word: &AddressWord) -> String {
     let mut name = line[word.name.start()..word.name.end()].to_ascii_uppercase();
     if let Some(Extension::Number { value, .. }) = &word.extension {
         name.push_str(&value.to_string());

@@ -13,6 +13,7 @@ pub mod document;
 pub mod engine;
 pub mod eval;
 pub mod frame;
+pub mod resolution;
 pub mod state;
 
 pub use engine::{Engine, Move};
@@ -103,10 +104,12 @@ fn new_engine<'a>(text: &str, config: &'a MachineConfig, kind: ProgramKind) -> E
 /// Whether a line of the program starts with `PROC`: such a program is a subprogram whatever its
 /// file is called.
 pub fn has_proc_header(text: &str) -> bool {
-    lines::line_ranges(text).any(|(start, end)| {
-        text[start..end]
-            .trim_start()
-            .get(..4)
-            .is_some_and(|word| word.eq_ignore_ascii_case("PROC"))
-    })
+    lines::line_ranges(text).any(|(start, end)| is_proc_header(&text[start..end]))
+}
+
+/// Whether a line starts with `PROC`, the header of a subprogram.
+pub fn is_proc_header(line: &str) -> bool {
+    line.trim_start()
+        .get(..4)
+        .is_some_and(|word| word.eq_ignore_ascii_case("PROC"))
 }

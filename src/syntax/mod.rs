@@ -70,18 +70,20 @@ pub fn visit_blocks(
 /// The names defined with `DEFINE name AS ...` anywhere in `text`: a macro may be used before the line
 /// that defines it is reached when it comes from a definition file, so they are collected up front.
 pub fn macro_names(text: &str) -> impl Iterator<Item = &str> {
-    lines::line_ranges(text).filter_map(move |(start, end)| {
-        let line = &text[start..end];
-        let upper_position = find_ascii_case_insensitive(line, "DEFINE")?;
-        let rest = line[upper_position + "DEFINE".len()..].trim_start();
-        let name_end = rest
-            .find(|character: char| !(character.is_ascii_alphanumeric() || character == '_'))
-            .unwrap_or(rest.len());
-        let name = &rest[..name_end];
-        let after = rest[name_end..].trim_start();
-        (!name.is_empty() && after.len() >= 2 && after.as_bytes()[..2].eq_ignore_ascii_case(b"AS"))
-            .then_some(name)
-    })
+    lines::line_ranges(text).filter_map(move |(start, end)| macro_defined_by(&text[start..end]))
+}
+
+/// The name a line defines with `DEFINE name AS ...`, if it defines one.
+pub fn macro_defined_by(line: &str) -> Option<&str> {
+    let upper_position = find_ascii_case_insensitive(line, "DEFINE")?;
+    let rest = line[upper_position + "DEFINE".len()..].trim_start();
+    let name_end = rest
+        .find(|character: char| !(character.is_ascii_alphanumeric() || character == '_'))
+        .unwrap_or(rest.len());
+    let name = &rest[..name_end];
+    let after = rest[name_end..].trim_start();
+    (!name.is_empty() && after.len() >= 2 && after.as_bytes()[..2].eq_ignore_ascii_case(b"AS"))
+        .then_some(name)
 }
 
 fn find_ascii_case_insensitive(haystack: &str, needle: &str) -> Option<usize> {
