@@ -107,6 +107,67 @@ fn write_axes(out: &mut dyn Write, values: &[(Arc<str>, f64)]) -> io::Result<()>
     out.write_all(b"}")
 }
 
+/// Writes a number as serde_json would. Most values of a program have at most three decimals; they
+/// are written from their integer thousandths, which gives the same shortest text as the general
+/// algorithm (checked below) at a fraction of its cost, the bulk of a preview's time.
 fn write_number(out: &mut dyn Write, value: f64) -> io::Result<()> {
-    serde_json::to_writer(out, &round(value)).map_err(io::Error::from)
+    let value = round(value);
+    let thousandths = value * 1000.0;
+    if thousandths.abs() < 1e15 && thousandths == thousandths.trunc() {
+        let count = thousandths as i64;
+        // The text below parses back to `value` only if `value` is the double nearest to it.
+        if count as f64 / 1000.0 == value {
+            let sign = if count < 0 { "-" } else { "" };
+            let magnitude = count.unsigned_abs();
+            let (whole, fraction) = (magnitude / 1000, magnitude % 1000);
+            return match fraction {
+                0 => write!(out, "{sign}{whole}.0"),
+                _ if fraction % 100 == 0 => write!(out, "{sign}{whole}.{}", fraction / 100),
+                _ if fraction % 10 == 0 => write!(out, "{sign}{whole}.{:02}", fraction / 10),
+                _ => write!(out, "{sign}{whole}.{fraction:03}"),
+            };
+        }
+    }
+    serde_json::to_writer(out, &value).map_err(io::Error::from)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn fast(value: f64) -> String {
+        let mut out = Vec::new();
+        write_number(&mut out, value).unwrap();
+        String::from_utf8(out).unwrap()
+    }
+
+    #[test]
+    fn numbers_print_as_serde_json_prints_them() {
+        let mut values = vec![
+            0.0, -0.0, 1.0, -1.0, 58.0, 0.5, 0.05, 0.005, 0.001, 1e-7, 123456.789,
+        ];
+        values.extend([
+            1e14,
+            1e15,
+            1e16,
+            2.5e-3,
+            -59.985,
+            1.0 / 3.0,
+            25.4,
+            12.7 * 3.0,
+        ]);
+        let mut state = 12345u64;
+        for _ in 0..100_000 {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            let thousandths = (state % 2_000_000_000) as f64 - 1e9;
+            values.push(thousandths / 1000.0);
+            values.push(thousandths / 7.0);
+        }
+        for value in values {
+            let expected = serde_json::to_string(&round(value)).unwrap();
+            assert_eq!(fast(value), expected, "{value:e}");
+        }
+    }
 }
