@@ -10,6 +10,9 @@
 //! from-scratch analysis of the same text gives (tested on random edits).
 
 use crate::analysis::engine::{Engine, EngineSnapshot};
+use crate::analysis::position_reads::{
+    position_reads as position_reads_of, shifted_axes, READS_ALL,
+};
 pub use crate::analysis::resolution::{ResolutionMode, WordResolution};
 use crate::analysis::state::{ModalState, Pole};
 use crate::analysis::{is_proc_header, Move, ProgramKind};
@@ -141,6 +144,8 @@ pub struct DocumentAnalysis {
     checkpoints: Vec<Checkpoint>,
     /// The findings of single lines (syntax, structure, semantics), sorted by line and column.
     body: Vec<LineDiagnostic>,
+    /// Per line: the axes its block reads absolutely (see [`position_reads_of`]).
+    position_reads: Vec<u8>,
     /// The findings made at the end of the program (structures never closed), at their lines.
     tail: Vec<LineDiagnostic>,
     /// `body` and `tail` together, sorted as a from-scratch analysis sorts them, when `tail` is not
@@ -155,6 +160,8 @@ struct Pass {
     lines_read: usize,
     checkpoints: Vec<Checkpoint>,
     diagnostics: Vec<LineDiagnostic>,
+    /// Line ranges (new numbering) whose old findings stay, because a shift was carried across them.
+    kept: Vec<Range<usize>>,
     /// The line at which the pass met an old checkpoint with the same state (new numbering), or
     /// `None` when it ran to the end of the document.
     converged_at: Option<usize>,
@@ -176,6 +183,7 @@ impl DocumentAnalysis {
             context,
             subprogram: false,
             line_flags: Vec::new(),
+            position_reads: Vec::new(),
             checkpoints: Vec::new(),
             body: Vec::new(),
             tail: Vec::new(),
@@ -235,26 +243,46 @@ impl DocumentAnalysis {
             checkpoint.line = checkpoint.line.saturating_add_signed(delta);
             checkpoint.structure.shift_lines(old_region_end, delta);
         }
+        // Lines the edit inserted are read by the pass; until then they count as reading everything.
+        self.position_reads.splice(
+            first_line..first_line + removed,
+            std::iter::repeat_n(READS_ALL, inserted),
+        );
         let start = self.checkpoints[keep - 1].clone();
-        let pass = self.run_pass(source, start.clone(), first_line + inserted, &later);
-        // Diagnostics: those before the pass's start stay, the pass's replace what it re-read, and
-        // after the point of convergence the old ones stay with their lines moved. One splice, so
-        // that an edit costs a move of the list, not a copy of every message.
+        let mut position_reads = std::mem::take(&mut self.position_reads);
+        let pass = self.run_pass(
+            source,
+            start.clone(),
+            first_line + inserted,
+            &mut later,
+            &mut position_reads,
+        );
+        self.position_reads = position_reads;
+        // Diagnostics: those before the pass's start stay; the pass's replace what it re-read; the
+        // old ones of the intervals it carried a shift across, and of everything after the point of
+        // convergence, stay with their lines moved.
         let prefix_end = self.body.partition_point(|item| item.line < start.line);
-        let suffix_start = match pass.converged_at {
-            Some(converged_line) => {
-                let old_line = converged_line.saturating_add_signed(-delta);
-                self.body.partition_point(|item| item.line < old_line)
+        let old_rest: Vec<LineDiagnostic> = self.body.drain(prefix_end..).collect();
+        let mut kept_ranges = pass.kept.iter().peekable();
+        let converged_at = pass.converged_at;
+        let kept = old_rest.into_iter().filter_map(|mut item| {
+            if item.line < old_region_end {
+                return None;
             }
-            None => self.body.len(),
-        };
-        let new_count = pass.diagnostics.len();
-        self.body.splice(prefix_end..suffix_start, pass.diagnostics);
-        if delta != 0 {
-            for item in &mut self.body[prefix_end + new_count..] {
-                item.line = item.line.saturating_add_signed(delta);
+            item.line = item.line.saturating_add_signed(delta);
+            if converged_at.is_some_and(|line| item.line >= line) {
+                return Some(item);
             }
-        }
+            while kept_ranges
+                .next_if(|range| range.end <= item.line)
+                .is_some()
+            {}
+            kept_ranges
+                .peek()
+                .is_some_and(|range| range.contains(&item.line))
+                .then_some(item)
+        });
+        merge_by_line(&mut self.body, pass.diagnostics, kept);
         match pass.converged_at {
             Some(converged_line) => {
                 for item in &mut self.tail {
@@ -421,7 +449,15 @@ impl DocumentAnalysis {
             engine: engine.snapshot(),
             structure: StructureChecker::default(),
         };
-        let pass = self.run_pass(source, start.clone(), line_count, &[]);
+        let mut position_reads = vec![READS_ALL; line_count];
+        let pass = self.run_pass(
+            source,
+            start.clone(),
+            line_count,
+            &mut [],
+            &mut position_reads,
+        );
+        self.position_reads = position_reads;
         self.checkpoints = vec![start];
         self.checkpoints.extend(pass.checkpoints);
         self.body = pass.diagnostics;
@@ -431,15 +467,19 @@ impl DocumentAnalysis {
     }
 
     /// Reads the document forward from `start`, taking new checkpoints, until it meets one of
-    /// `old_checkpoints` (at or after `changed_end`, the first line the edit did not touch) with the
-    /// same state, or the end.
+    /// `old_checkpoints` (all at or after `changed_end`, the first line the edit did not touch) with
+    /// the same state, or the end. At an old checkpoint whose state differs only by a shift of
+    /// positions, the intervals after it whose blocks read the shifted axes only incrementally are not
+    /// read again: their findings stay and their checkpoints are moved by the shift.
     fn run_pass(
         &self,
         source: &dyn LineSource,
         start: Checkpoint,
         changed_end: usize,
-        old_checkpoints: &[Checkpoint],
+        old_checkpoints: &mut [Checkpoint],
+        position_reads: &mut [u8],
     ) -> Pass {
+        let line_count = source.line_count();
         let mut engine = Engine::from_snapshot(&self.config, start.engine);
         let mut structure = start.structure;
         let mut parser = LineParser::new();
@@ -450,58 +490,127 @@ impl DocumentAnalysis {
             lines_read: 0,
             checkpoints: Vec::new(),
             diagnostics: Vec::new(),
+            kept: Vec::new(),
             converged_at: None,
             tail: Vec::new(),
         };
-        let mut next_old = old_checkpoints
-            .iter()
-            .skip_while(|checkpoint| checkpoint.line < changed_end)
-            .peekable();
-        source.for_each_line(start.line, &mut |index, line| {
-            if index > start.line {
-                while next_old
-                    .next_if(|checkpoint| checkpoint.line < index)
-                    .is_some()
-                {}
-                if let Some(old) = next_old.peek() {
-                    if old.line == index
-                        && old.structure == structure
-                        && engine.matches(&old.engine)
+        let first_old = old_checkpoints.partition_point(|checkpoint| checkpoint.line < changed_end);
+        let mut next_old = first_old;
+        let mut resume_at = start.line;
+        let mut last_checkpoint = start.line;
+        loop {
+            // Why the reading below stopped: at an old checkpoint whose state differs by a shift.
+            let mut shift = None;
+            source.for_each_line(resume_at, &mut |index, line| {
+                if index > resume_at || index != start.line && index == resume_at {
+                    while old_checkpoints
+                        .get(next_old)
+                        .is_some_and(|checkpoint| checkpoint.line < index)
                     {
-                        pass.converged_at = Some(index);
-                        return false;
+                        next_old += 1;
+                    }
+                    if let Some(old) = old_checkpoints.get(next_old) {
+                        if old.line == index && old.structure == structure {
+                            if engine.matches(&old.engine) {
+                                pass.converged_at = Some(index);
+                                return false;
+                            }
+                            if index > resume_at {
+                                if let Some(found) = engine.position_shift_from(&old.engine) {
+                                    shift = Some(found);
+                                    return false;
+                                }
+                            }
+                        }
+                    }
+                    if index - last_checkpoint >= CHECKPOINT_INTERVAL {
+                        last_checkpoint = index;
+                        pass.checkpoints.push(Checkpoint {
+                            line: index,
+                            engine: engine.snapshot(),
+                            structure: structure.clone(),
+                        });
                     }
                 }
-                if (index - start.line) % CHECKPOINT_INTERVAL == 0 {
-                    pass.checkpoints.push(Checkpoint {
+                pass.lines_read += 1;
+                let first_of_line = pass.diagnostics.len();
+                parser.parse(line, &self.context, &mut block, &mut line_findings);
+                pass.diagnostics
+                    .extend(line_findings.drain(..).map(|diagnostic| LineDiagnostic {
                         line: index,
-                        engine: engine.snapshot(),
-                        structure: structure.clone(),
-                    });
+                        diagnostic,
+                    }));
+                structure.feed(index, &block, &mut pass.diagnostics);
+                engine.step(line, &block, &mut engine_findings);
+                pass.diagnostics
+                    .extend(engine_findings.drain(..).map(|diagnostic| LineDiagnostic {
+                        line: index,
+                        diagnostic,
+                    }));
+                let of_line = &mut pass.diagnostics[first_of_line..];
+                for item in of_line.iter_mut() {
+                    item.diagnostic.severity = self.config.severity_of(item.diagnostic.code);
                 }
+                of_line.sort_by_key(|item| item.diagnostic.span.start());
+                if let Some(reads) = position_reads.get_mut(index) {
+                    *reads = position_reads_of(&self.config, line, &block, &engine.state);
+                }
+                true
+            });
+            let Some(shift) = shift else {
+                break;
+            };
+            // Carry the shift across every following interval that reads the shifted axes only
+            // incrementally; read again from the first one that does not.
+            let Some(axes) = shifted_axes(&self.config, &shift) else {
+                resume_at = old_checkpoints[next_old].line;
+                continue;
+            };
+            let here = old_checkpoints[next_old].line;
+            pass.checkpoints.push(Checkpoint {
+                line: here,
+                engine: engine.snapshot(),
+                structure: structure.clone(),
+            });
+            last_checkpoint = here;
+            let mut current = next_old;
+            loop {
+                let interval_start = old_checkpoints[current].line;
+                let interval_end = old_checkpoints
+                    .get(current + 1)
+                    .map_or(line_count, |checkpoint| checkpoint.line);
+                let safe = position_reads[interval_start..interval_end]
+                    .iter()
+                    .all(|reads| reads & READS_ALL == 0 && reads & axes == 0);
+                if !safe {
+                    break;
+                }
+                pass.kept.push(interval_start..interval_end);
+                current += 1;
+                if current == old_checkpoints.len() {
+                    // Shifted to the end: the structures open at the end are those of before.
+                    pass.converged_at = Some(line_count);
+                    break;
+                }
+                old_checkpoints[current].engine.shift_positions(&shift);
+                let checkpoint = old_checkpoints[current].clone();
+                last_checkpoint = checkpoint.line;
+                pass.checkpoints.push(checkpoint);
             }
-            pass.lines_read += 1;
-            let first_of_line = pass.diagnostics.len();
-            parser.parse(line, &self.context, &mut block, &mut line_findings);
-            pass.diagnostics
-                .extend(line_findings.drain(..).map(|diagnostic| LineDiagnostic {
-                    line: index,
-                    diagnostic,
-                }));
-            structure.feed(index, &block, &mut pass.diagnostics);
-            engine.step(line, &block, &mut engine_findings);
-            pass.diagnostics
-                .extend(engine_findings.drain(..).map(|diagnostic| LineDiagnostic {
-                    line: index,
-                    diagnostic,
-                }));
-            let of_line = &mut pass.diagnostics[first_of_line..];
-            for item in of_line.iter_mut() {
-                item.diagnostic.severity = self.config.severity_of(item.diagnostic.code);
+            if pass.converged_at.is_some() {
+                break;
             }
-            of_line.sort_by_key(|item| item.diagnostic.span.start());
-            true
-        });
+            if current > next_old {
+                let checkpoint = &old_checkpoints[current];
+                engine = Engine::from_snapshot(&self.config, checkpoint.engine.clone());
+                structure = checkpoint.structure.clone();
+                // The checkpoint at `current` was pushed above; the old ones before it are replaced.
+                next_old = current + 1;
+            } else {
+                next_old = current + 1;
+            }
+            resume_at = old_checkpoints[current].line;
+        }
         if pass.converged_at.is_none() {
             structure.finish(&mut pass.tail);
             for item in &mut pass.tail {
@@ -522,6 +631,23 @@ impl DocumentAnalysis {
             combined
         });
     }
+}
+
+/// Appends to `body` the items of `fresh` and `kept`, both sorted by line and about disjoint lines, in
+/// line order.
+fn merge_by_line(
+    body: &mut Vec<LineDiagnostic>,
+    fresh: Vec<LineDiagnostic>,
+    kept: impl Iterator<Item = LineDiagnostic>,
+) {
+    let mut fresh = fresh.into_iter().peekable();
+    for item in kept {
+        while let Some(earlier) = fresh.next_if(|candidate| candidate.line < item.line) {
+            body.push(earlier);
+        }
+        body.push(item);
+    }
+    body.extend(fresh);
 }
 
 /// The whole-document facts a line carries.

@@ -103,6 +103,17 @@ pub struct EngineSnapshot {
     missing_feed_reported: bool,
 }
 
+impl EngineSnapshot {
+    /// Moves every known position by `shift` (per axis, in the basic unit system).
+    pub fn shift_positions(&mut self, shift: &[f64]) {
+        for (position, delta) in self.state.positions.iter_mut().zip(shift) {
+            if let Some(position) = position {
+                *position += delta;
+            }
+        }
+    }
+}
+
 /// The non-modal G functions of one block that change what its axis words mean.
 #[derive(Default)]
 struct BlockFunctions {
@@ -144,6 +155,27 @@ impl<'a> Engine<'a> {
         self.flow_uncertain == snapshot.flow_uncertain
             && self.missing_feed_reported == snapshot.missing_feed_reported
             && self.state == snapshot.state
+    }
+
+    /// When the engine's state differs from `snapshot` only by known positions (the same axes known in
+    /// both), the difference per axis (engine minus snapshot, zero where equal); `None` otherwise.
+    pub fn position_shift_from(&self, snapshot: &EngineSnapshot) -> Option<Vec<f64>> {
+        if self.flow_uncertain != snapshot.flow_uncertain
+            || self.missing_feed_reported != snapshot.missing_feed_reported
+        {
+            return None;
+        }
+        let mut shift = Vec::with_capacity(self.state.positions.len());
+        for (now, then) in self.state.positions.iter().zip(&snapshot.state.positions) {
+            match (now, then) {
+                (Some(now), Some(then)) => shift.push(now - then),
+                (None, None) => shift.push(0.0),
+                _ => return None,
+            }
+        }
+        let mut probe = snapshot.state.clone();
+        probe.positions.clone_from(&self.state.positions);
+        (probe == self.state).then_some(shift)
     }
 
     /// An engine that continues where `snapshot` was taken, on the same configuration.

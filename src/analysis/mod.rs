@@ -13,6 +13,7 @@ pub mod document;
 pub mod engine;
 pub mod eval;
 pub mod frame;
+pub mod position_reads;
 pub mod resolution;
 pub mod state;
 
