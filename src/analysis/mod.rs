@@ -21,7 +21,6 @@ pub use engine::{Engine, Move};
 
 use crate::config::MachineConfig;
 use crate::diagnostics::LineDiagnostic;
-use crate::syntax::lines;
 
 /// Everything the analysis finds in a program.
 #[derive(Debug, Clone, PartialEq)]
@@ -105,7 +104,7 @@ fn new_engine<'a>(text: &str, config: &'a MachineConfig, kind: ProgramKind) -> E
 /// Whether a line of the program starts with `PROC`: such a program is a subprogram whatever its
 /// file is called.
 pub fn has_proc_header(text: &str) -> bool {
-    lines::line_ranges(text).any(|(start, end)| is_proc_header(&text[start..end]))
+    crate::syntax::lines_containing(text, b"PROC").any(is_proc_header)
 }
 
 /// Whether a line starts with `PROC`, the header of a subprogram.
