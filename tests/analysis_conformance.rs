@@ -3,7 +3,7 @@
 //! and which analysis findings it must report (`!! A201`). See `fixtures/conformance/README.md`.
 
 use sinumerik_lsp::analysis::{analyze_program, Move, ProgramKind};
-use sinumerik_lsp::config::MachineConfig;
+use sinumerik_lsp::config::{parse_config_text, MachineConfig};
 use sinumerik_lsp::syntax::lines;
 use std::path::{Path, PathBuf};
 
@@ -17,6 +17,8 @@ struct Expectation {
     feed: Option<f64>,
     /// Whether the block has a `=>` part (and so must move).
     moves: bool,
+    /// `=> none`: the block must not move.
+    no_move: bool,
     codes: Vec<String>,
 }
 
@@ -27,6 +29,11 @@ fn parse_expectation(comment: &str) -> Expectation {
         None => (comment, ""),
     };
     if let Some(position) = moves_part.find("=>") {
+        if moves_part[position + 2..].trim() == "none" {
+            expectation.no_move = true;
+            expectation.codes = codes_part.split_whitespace().map(str::to_string).collect();
+            return expectation;
+        }
         expectation.moves = true;
         let mut in_machine = false;
         for word in moves_part[position + 2..].split_whitespace() {
@@ -82,7 +89,15 @@ fn matches_written(actual: f64, expected: f64, decimals: usize) -> bool {
 
 fn check_fixture(path: &Path) -> Vec<String> {
     let text = std::fs::read_to_string(path).expect("fixture is readable");
-    let config = if text.starts_with("; config: turn") {
+    // `; toml: ...` lines give the machine configuration as sinumerik.toml would.
+    let toml: String = text
+        .lines()
+        .filter_map(|line| line.strip_prefix("; toml: "))
+        .flat_map(|line| [line, "\n"])
+        .collect();
+    let config = if !toml.is_empty() {
+        parse_config_text(&toml, path).unwrap_or_else(|error| panic!("{error}"))
+    } else if text.starts_with("; config: turn") {
         MachineConfig::turn()
     } else {
         MachineConfig::mill()
@@ -117,6 +132,19 @@ fn check_fixture(path: &Path) -> Vec<String> {
                 expectation.codes,
                 reported
             ));
+        }
+        if expectation.no_move {
+            if analysis
+                .moves
+                .iter()
+                .any(|movement| movement.line == line_index)
+            {
+                failures.push(format!(
+                    "{name}:{}: expected no move, found one",
+                    line_index + 1
+                ));
+            }
+            continue;
         }
         if !expectation.moves {
             continue;
@@ -243,9 +271,13 @@ fn the_harness_notices_a_wrong_expectation() {
     let folder = std::env::temp_dir().join(format!("sinumerik-conformance-{}", std::process::id()));
     std::fs::create_dir_all(&folder).unwrap();
     let path = folder.join("WRONG.MPF");
-    std::fs::write(&path, "N10 G0 X10 ; => X11\nN20 G91 Y5 ; => Y5\n").unwrap();
+    std::fs::write(
+        &path,
+        "; toml: [offsets]\n; toml: G54 = { X = 100 }\nN10 G0 X10 ; => X11\nN20 G91 Y5 ; => Y5\nN30 G90 G54 X0 ; => none\nN40 X1 ; => MCS X1\n",
+    )
+    .unwrap();
     let failures = check_fixture(&path);
     std::fs::remove_dir_all(&folder).unwrap();
-    assert_eq!(failures.len(), 3, "{failures:?}");
+    assert_eq!(failures.len(), 5, "{failures:?}");
     assert!(failures[0].contains("X expected 11"), "{failures:?}");
 }

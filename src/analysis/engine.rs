@@ -12,6 +12,8 @@ use crate::syntax::gcodes::GCode;
 use std::borrow::Cow;
 use std::sync::Arc;
 
+mod frame_variables;
+
 /// A block that moves axes.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Move {
@@ -89,6 +91,14 @@ pub struct Engine<'a> {
     axis_names: Vec<Arc<str>>,
     /// The positions before the current block, kept in one buffer for all blocks.
     start_positions: Vec<Option<f64>>,
+    /// The geometry slot (X, Y, Z) of each configured axis, for frames.
+    slots: crate::analysis::machine::AxisSlots,
+    /// Per axis, how the current block wrote it: 0 not, 1 in workpiece coordinates, 2 as a machine
+    /// position (G53/G153/SUPA). One buffer for all blocks.
+    written: Vec<u8>,
+    /// The settable frame whose stored data the program wrote while it was active, until it is
+    /// selected again (the data are not active yet, reference §7.4).
+    stale_offset_data: Option<u8>,
 }
 
 /// The non-modal G functions of one block that change what its axis words mean.
@@ -113,6 +123,9 @@ impl<'a> Engine<'a> {
                 .map(|axis| Arc::from(axis.name.as_str()))
                 .collect(),
             start_positions: Vec::with_capacity(config.axes.len()),
+            slots: crate::analysis::machine::AxisSlots::new(config),
+            written: vec![0; config.axes.len()],
+            stale_offset_data: None,
         }
     }
 
@@ -157,10 +170,15 @@ impl<'a> Engine<'a> {
         }
         let mut functions = BlockFunctions::default();
         let mut forget_for_frames = false;
+        let mut offset_selected = false;
+        self.written.iter_mut().for_each(|kind| *kind = 0);
         for statement in statements {
             if let Statement::GCode { code, .. } = statement {
                 if code.is_modal() {
                     self.state.set_modal(*code);
+                    // Selecting a settable offset activates its stored data, also when the same
+                    // function is programmed again (reference §7.4).
+                    offset_selected |= code.group() == 8;
                     // PAROT, TOROT and TOFRAME turn the coordinate system with the table or the tool:
                     // positions are unknown afterwards (reference §7.5).
                     if matches!(code.group(), 52 | 53) && !code.name().ends_with("OF") {
@@ -177,6 +195,11 @@ impl<'a> Engine<'a> {
                 }
             }
         }
+        if offset_selected {
+            self.stale_offset_data = None;
+            self.state.offset = self.state.selected_offset(self.config);
+            crate::analysis::machine::reexpress(&mut self.state, &self.slots, false);
+        }
         let mut start_positions = std::mem::take(&mut self.start_positions);
         start_positions.clear();
         start_positions.extend_from_slice(&self.state.positions);
@@ -185,6 +208,8 @@ impl<'a> Engine<'a> {
         let mut polar = PolarWords::default();
         let plane_before = self.state.plane_index();
         let mut forget_after = forget_for_frames;
+        // A call or a kinematic change may also write the settable frames' data (measuring cycles do).
+        let mut frame_data_changed = forget_for_frames;
         let mut circle_words = CircleWords::default();
         for statement in statements {
             let span = statement.span();
@@ -268,11 +293,13 @@ impl<'a> Engine<'a> {
                 }
                 Statement::Call { kind, .. } if *kind != CallKind::Modal => {
                     forget_after = true;
+                    frame_data_changed = true;
                 }
                 Statement::Instruction { name, .. } => {
                     let upper = line[name.start()..name.end()].to_ascii_uppercase();
                     if changes_kinematics(&upper) {
                         forget_after = true;
+                        frame_data_changed = true;
                     }
                 }
                 _ => {}
@@ -288,6 +315,8 @@ impl<'a> Engine<'a> {
                 self.define_pole(code, line, block, statements, &polar, diagnostics);
             } else {
                 self.apply_frame_instruction(code, line, block, statements, diagnostics);
+                // A frame instruction moves nothing: the axes keep their machine set-points.
+                crate::analysis::machine::reexpress(&mut self.state, &self.slots, true);
             }
         } else if polar.angle.is_some() || polar.radius.is_some() {
             moved = true;
@@ -335,8 +364,7 @@ impl<'a> Engine<'a> {
                     .iter()
                     .any(|name| self.config.axes[index].name.eq_ignore_ascii_case(name))
                 {
-                    self.state.positions[index] = None;
-                    self.state.touched[index] = true;
+                    self.program_axis(index, None);
                 }
             }
         }
@@ -366,6 +394,35 @@ impl<'a> Engine<'a> {
         if moved && functions.frame_or_pole.is_none() && !functions.dwell {
             self.check_feed(&motion, statements, diagnostics);
         }
+        let moves_axes = moved && functions.frame_or_pole.is_none() && !functions.dwell;
+        if let Some(index) = self.stale_offset_data.filter(|_| moves_axes) {
+            self.stale_offset_data = None;
+            let name = crate::analysis::offsets::frame_name(index);
+            diagnostics.push(Diagnostic::new(
+                Code::SettableDataNotActive,
+                circle_words.span.unwrap_or_default(),
+                format!("the data of {name} ($P_UIFR[{index}]) were changed while {name} was active; this move still uses the old data: program {name} again to activate them"),
+            ));
+        }
+        if functions.machine_coordinates && find_word(statements, AddressKind::Axis).is_none() {
+            // G53/G153/SUPA are non-modal (reference §2.3, §9.2 #13).
+            if let Some(span) = statements.iter().find_map(|statement| match statement {
+                Statement::GCode { code, span } if code.group() == 9 => Some(*span),
+                _ => None,
+            }) {
+                diagnostics.push(Diagnostic::new(
+                    Code::SuppressionWithoutAxes,
+                    span,
+                    "G53, G153 and SUPA act only on the axes of their own block; alone they do nothing: write them in every block that moves in machine coordinates",
+                ));
+            }
+        }
+        crate::analysis::machine::store_machine_targets(
+            &mut self.state,
+            &self.slots,
+            &self.written,
+        );
+        crate::analysis::machine::update_after_block(&mut self.state, &self.slots, &self.written);
         let result = (moved && functions.frame_or_pole.is_none() && !functions.dwell).then(|| {
             self.describe_move(
                 line_index,
@@ -383,6 +440,12 @@ impl<'a> Engine<'a> {
             self.state.forget_positions();
             self.state.variables.forget_all();
             self.state.frame = None;
+            // The callee may select another settable offset; it is read again when the program
+            // selects one.
+            self.state.offset.iter_mut().for_each(|value| *value = None);
+            if frame_data_changed {
+                self.state.settable_data.forget_all();
+            }
         }
         result
     }
@@ -402,6 +465,7 @@ impl<'a> Engine<'a> {
             return true;
         };
         self.state.touched[index] = true;
+        self.written[index] = 1;
         let kind = self.config.axes[index].kind;
         let modifier = word.value.modifier.map(|(modifier, _)| modifier);
         let absolute = match modifier {
@@ -432,14 +496,14 @@ impl<'a> Engine<'a> {
         let value = self.word_value(line, block, word, diagnostics);
         // Unknown value, or a mode inherited from an unseen caller: the position is unknown.
         let (Some(mut value), Some(absolute)) = (value, absolute) else {
-            self.state.positions[index] = None;
+            self.state.program(index, None);
             return false;
         };
         if matches!(kind, AxisKind::Linear | AxisKind::Transverse) {
             match self.state.length_factor(self.config.metric) {
                 Some(factor) => value *= factor,
                 None => {
-                    self.state.positions[index] = None;
+                    self.state.program(index, None);
                     return false;
                 }
             }
@@ -463,22 +527,48 @@ impl<'a> Engine<'a> {
                 Some(true) => value /= 2.0,
                 Some(false) => {}
                 None => {
-                    self.state.positions[index] = None;
+                    self.state.program(index, None);
                     return false;
                 }
             }
         }
         if functions.machine_coordinates || functions.reference_point {
-            // G53/G153/SUPA values are machine positions; G74/G75 approach machine-defined points.
-            let known =
-                functions.machine_coordinates && self.state.machine_equals_programmed() && absolute;
-            self.state.positions[index] = known.then_some(value);
+            // G53/G153/SUPA values are machine positions, stored in workpiece coordinates after the
+            // block (reference §3.8); G74/G75 approach machine-defined points. An increment in machine
+            // coordinates is not followed.
+            let known = functions.machine_coordinates && absolute;
+            self.state.machine[index] = known.then_some(value);
+            self.state.program(index, None);
+            self.written[index] = 2;
             return known;
+        }
+        // Under SD42440 = 1 an increment adds to the last programmed value, so that it also traverses
+        // a frame change since; under 0 it adds to the set-point in the new frames (reference §3.6).
+        let reference = if self.config.frame_offset_incr_prog {
+            self.state.programmed[index]
+        } else {
+            self.state.positions[index]
+        };
+        if !absolute && self.config.frame_offset_incr_prog {
+            let programmed = self.state.programmed[index];
+            let difference = match (programmed, self.state.positions[index]) {
+                (Some(programmed), Some(current)) => ((programmed - current).abs() > 1e-9)
+                    .then(|| format!("{:.4}", programmed - current)),
+                (Some(_), None) => Some("an unknown amount".to_string()),
+                _ => None,
+            };
+            if let Some(difference) = difference {
+                diagnostics.push(Diagnostic::new(
+                    Code::IncrementAfterOffsetChange,
+                    word.span,
+                    format!("`{name}` moves incrementally after a frame or offset change: the change ({difference} in workpiece coordinates) is traversed in addition to the increment (SD42440 = 1)"),
+                ));
+            }
         }
         let target = if absolute {
             Some(value)
         } else {
-            match self.state.positions[index] {
+            match reference {
                 Some(previous) => Some(previous + value),
                 None => {
                     diagnostics.push(Diagnostic::new(
@@ -490,8 +580,14 @@ impl<'a> Engine<'a> {
                 }
             }
         };
-        self.state.positions[index] = target;
+        self.state.program(index, target);
         target.is_some()
+    }
+
+    /// The block programs axis `index` to `value` in workpiece coordinates.
+    fn program_axis(&mut self, index: usize, value: Option<f64>) {
+        self.state.program(index, value);
+        self.written[index] = 1;
     }
 
     /// The value of a word's expression (constant or evaluated), or `None` when unknown.
@@ -531,6 +627,19 @@ impl<'a> Engine<'a> {
             AssignTarget::Variable { indexes } if indexes.is_empty() => {
                 let name = line[target_span.start()..target_span.end()].to_ascii_uppercase();
                 self.state.variables.set_variable(&name, evaluated);
+            }
+            AssignTarget::SystemVariable { indexes } => {
+                self.apply_system_variable_write(
+                    line,
+                    block,
+                    target_span,
+                    indexes,
+                    value,
+                    diagnostics,
+                );
+            }
+            AssignTarget::GGroup { group } => {
+                self.apply_group_write(line, block, *group, value, diagnostics);
             }
             _ => {}
         }
@@ -755,10 +864,9 @@ impl<'a> Engine<'a> {
         let (first, second) = self.plane_axes();
         // With the plane unknown, any geometry axis may be a plane axis.
         let plane_axes = self.plane_axis_indexes();
-        let forget_plane = |state: &mut ModalState| {
+        let forget_plane = |engine: &mut Engine| {
             for index in &plane_axes {
-                state.positions[*index] = None;
-                state.touched[*index] = true;
+                engine.program_axis(*index, None);
             }
         };
         let angle = match polar.angle {
@@ -786,12 +894,12 @@ impl<'a> Engine<'a> {
                 span,
                 "a polar block may add only the axis perpendicular to the plane; a plane axis cannot join AP and RP",
             ));
-            forget_plane(&mut self.state);
+            forget_plane(self);
             return None;
         }
         let (Some(first), Some(second), Some(plane)) = (first, second, self.state.plane_index())
         else {
-            forget_plane(&mut self.state);
+            forget_plane(self);
             return None;
         };
         let pole = match self.state.poles[plane] {
@@ -813,14 +921,12 @@ impl<'a> Engine<'a> {
         let (Some(pole), Some(angle), Some(radius), false) =
             (pole, angle, radius, transverse_in_plane)
         else {
-            forget_plane(&mut self.state);
+            forget_plane(self);
             return None;
         };
         let radians = angle.to_radians();
-        self.state.positions[first] = Some(pole.0 + radius * radians.cos());
-        self.state.positions[second] = Some(pole.1 + radius * radians.sin());
-        self.state.touched[first] = true;
-        self.state.touched[second] = true;
+        self.program_axis(first, Some(pole.0 + radius * radians.cos()));
+        self.program_axis(second, Some(pole.1 + radius * radians.sin()));
         Some(pole)
     }
 
@@ -866,32 +972,13 @@ impl<'a> Engine<'a> {
             .position(|axis| axis.name.eq_ignore_ascii_case(name))
     }
 
-    /// Machine coordinates of the touched axes whose value is known: the programmable frame applied to
-    /// X, Y and Z (the other axes have no frame here); transverse axes as radii.
+    /// Machine coordinates of the touched axes whose value is known (transverse axes as radii).
     fn machine_positions(&self) -> Vec<(Arc<str>, f64)> {
-        let frame = self.state.frame.unwrap_or_default();
-        let slot_of = |index: usize| {
-            ["X", "Y", "Z"]
-                .iter()
-                .position(|name| self.config.axes[index].name.eq_ignore_ascii_case(name))
-        };
-        let mut point = [None; 3];
-        for index in 0..self.config.axes.len() {
-            if let Some(slot) = slot_of(index) {
-                point[slot] = self.state.positions[index];
-            }
-        }
         self.axis_names
             .iter()
             .enumerate()
             .filter(|(index, _)| self.state.touched[*index])
-            .filter_map(|(index, name)| {
-                let value = match slot_of(index) {
-                    Some(slot) => frame.apply_axis(slot, point)?,
-                    None => self.state.positions[index]?,
-                };
-                Some((name.clone(), value))
-            })
+            .filter_map(|(index, name)| Some((name.clone(), self.state.machine[index]?)))
             .collect()
     }
 

@@ -13,6 +13,8 @@ pub mod document;
 pub mod engine;
 pub mod eval;
 pub mod frame;
+pub mod machine;
+pub mod offsets;
 pub mod state;
 
 pub use engine::{Engine, Move};
