@@ -12,6 +12,7 @@ use crate::syntax::gcodes::GCode;
 use std::borrow::Cow;
 use std::sync::Arc;
 
+mod circles;
 mod frame_variables;
 
 /// A block that moves axes.
@@ -74,6 +75,12 @@ struct CircleWords {
     radius_written: bool,
     radius: Option<f64>,
     opening_angle: bool,
+    /// The value of AR, when known.
+    opening_angle_value: Option<f64>,
+    /// I1, J1, K1 of CIP: written, with (value, absolute) when known.
+    intermediate: [Option<Option<(f64, bool)>>; 3],
+    /// TURN: its value when known, and its span.
+    turns: Option<(Option<f64>, crate::diagnostics::Span)>,
     /// The span of the block's words, for findings about the circle as a whole.
     span: Option<crate::diagnostics::Span>,
 }
@@ -99,6 +106,9 @@ pub struct Engine<'a> {
     /// The settable frame whose stored data the program wrote while it was active, until it is
     /// selected again (the data are not active yet, reference §7.4).
     stale_offset_data: Option<u8>,
+    /// The direction of the path at the end of the last move, in the plane (by index) it moved in,
+    /// for CT; `None` when unknown.
+    tangent: Option<(usize, (f64, f64))>,
 }
 
 /// The non-modal G functions of one block that change what its axis words mean.
@@ -126,6 +136,7 @@ impl<'a> Engine<'a> {
             slots: crate::analysis::machine::AxisSlots::new(config),
             written: vec![0; config.axes.len()],
             stale_offset_data: None,
+            tangent: None,
         }
     }
 
@@ -249,6 +260,21 @@ impl<'a> Engine<'a> {
                     AddressKind::Interpolation if word.extension.is_none() => {
                         self.collect_centre_word(line, block, word, &mut circle_words, diagnostics);
                     }
+                    AddressKind::Interpolation
+                        if matches!(word.extension, Some(Extension::Number { value: 1, .. })) =>
+                    {
+                        self.collect_intermediate_word(
+                            line,
+                            block,
+                            word,
+                            &mut circle_words,
+                            diagnostics,
+                        );
+                    }
+                    AddressKind::Named(NamedAddress::Turns) => {
+                        circle_words.turns =
+                            Some((self.word_value(line, block, word, diagnostics), word.span));
+                    }
                     AddressKind::Named(NamedAddress::CircleRadius) => {
                         circle_words.radius_written = true;
                         circle_words.radius = self
@@ -259,6 +285,8 @@ impl<'a> Engine<'a> {
                     AddressKind::Named(NamedAddress::OpeningAngle) => {
                         // `G3 I10 J0 AR=90` moves without any axis word.
                         circle_words.opening_angle = true;
+                        circle_words.opening_angle_value =
+                            self.word_value(line, block, word, diagnostics);
                         moved |= functions.frame_or_pole.is_none() && !functions.dwell;
                     }
                     AddressKind::MFunction => {
@@ -345,33 +373,12 @@ impl<'a> Engine<'a> {
         let motion = self.state.groups[1]
             .map(GCode::name)
             .unwrap_or(Cow::Borrowed(""));
-        let is_circle = matches!(motion.as_ref(), "G2" | "G3");
         let polar_move = polar.angle.is_some() || polar.radius.is_some();
-        if moved && is_circle && circle_words.opening_angle && !polar_move {
-            // With AR and a centre, the end point is the start turned about the centre, which is not
-            // followed yet: plane axes not written in the block are unknown, not left where they were.
-            let written: Vec<String> = statements
-                .iter()
-                .filter_map(|statement| match statement {
-                    Statement::Address(word) if word.kind == AddressKind::Axis => {
-                        Some(axis_name(line, word))
-                    }
-                    _ => None,
-                })
-                .collect();
-            for index in self.plane_axis_indexes() {
-                if !written
-                    .iter()
-                    .any(|name| self.config.axes[index].name.eq_ignore_ascii_case(name))
-                {
-                    self.program_axis(index, None);
-                }
-            }
-        }
-        let arc = if moved && is_circle && functions.frame_or_pole.is_none() {
-            if polar_move {
+        let moves_path = moved && functions.frame_or_pole.is_none() && !functions.dwell;
+        let arc = if moves_path {
+            match motion.as_ref() {
                 // A polar circle turns around the pole; the start must lie on it (reference §5.2).
-                polar_circle_centre.and_then(|centre| {
+                "G2" | "G3" if polar_move => polar_circle_centre.and_then(|centre| {
                     self.polar_circle(
                         motion.as_ref() == "G2",
                         &start_positions,
@@ -379,18 +386,24 @@ impl<'a> Engine<'a> {
                         &polar,
                         diagnostics,
                     )
-                })
-            } else {
-                self.resolve_circle(
+                }),
+                "G2" | "G3" => self.resolve_circle(
                     motion.as_ref() == "G2",
                     &start_positions,
                     &circle_words,
                     diagnostics,
-                )
+                ),
+                "CIP" => self.resolve_cip(&start_positions, &circle_words, diagnostics),
+                "CT" => self.resolve_ct(&start_positions),
+                _ => None,
             }
         } else {
             None
         };
+        let arc = self.apply_turns(arc, &circle_words, diagnostics);
+        if moves_path {
+            self.update_tangent(&motion, &start_positions, arc.as_ref());
+        }
         if moved && functions.frame_or_pole.is_none() && !functions.dwell {
             self.check_feed(&motion, statements, diagnostics);
         }
@@ -440,6 +453,7 @@ impl<'a> Engine<'a> {
             self.state.forget_positions();
             self.state.variables.forget_all();
             self.state.frame = None;
+            self.tangent = None;
             // The callee may select another settable offset; it is read again when the program
             // selects one.
             self.state.offset.iter_mut().for_each(|value| *value = None);
@@ -1031,95 +1045,6 @@ impl<'a> Engine<'a> {
             }
         }
         circle_words.centre[slot] = Some((value, absolute));
-    }
-
-    /// Resolves the circle of a G2/G3 block, reporting what the control would reject.
-    fn resolve_circle(
-        &self,
-        clockwise: bool,
-        start_positions: &[Option<f64>],
-        words: &CircleWords,
-        diagnostics: &mut Vec<Diagnostic>,
-    ) -> Option<crate::analysis::circle::Circle> {
-        use crate::analysis::circle::{from_centre, from_radius, CircleError};
-        let span = words.span.unwrap_or_default();
-        let (Some(first), Some(second)) = self.plane_axes() else {
-            return None;
-        };
-        let plane_slots = |index: usize| -> Option<usize> {
-            match self.config.axes[index].name.to_ascii_uppercase().as_str() {
-                "X" => Some(0),
-                "Y" => Some(1),
-                "Z" => Some(2),
-                _ => None,
-            }
-        };
-        let centre_given = [first, second]
-            .iter()
-            .any(|index| plane_slots(*index).is_some_and(|slot| words.centre[slot].is_some()));
-        if !words.radius_written && !centre_given && !words.opening_angle && !words.centre_unknown {
-            diagnostics.push(Diagnostic::new(
-                Code::CircleWithoutCentre,
-                span,
-                "G2/G3 needs a centre (I, J, K), a radius (CR=), an opening angle (AR=) or polar values (AP=, RP=)",
-            ));
-            return None;
-        }
-        if words.centre_unknown || (words.radius_written && words.radius.is_none()) {
-            // A value of the circle is unknown: nothing can be checked.
-            return None;
-        }
-        let start = (start_positions[first]?, start_positions[second]?);
-        let end = (self.state.positions[first]?, self.state.positions[second]?);
-        let error_const = self.config.circle_error_const;
-        let error_factor = self.config.circle_error_factor;
-        let result = if let Some(radius) = words.radius {
-            from_radius(start, end, radius, clockwise, error_const, error_factor)
-        } else if centre_given {
-            let coordinate = |index: usize, start_value: f64| -> f64 {
-                match plane_slots(index).and_then(|slot| words.centre[slot]) {
-                    Some((value, true)) => value,
-                    Some((value, false)) => start_value + value,
-                    // A centre parameter that is 0 may be left out (reference §3.2).
-                    None => start_value,
-                }
-            };
-            let centre = (coordinate(first, start.0), coordinate(second, start.1));
-            from_centre(start, end, centre, clockwise, error_const, error_factor)
-        } else {
-            // An opening angle (AR=) is not followed yet.
-            return None;
-        };
-        match result {
-            Ok(circle) => Some(circle),
-            Err(CircleError::EndNotOnCircle {
-                difference,
-                tolerance,
-            }) => {
-                diagnostics.push(Diagnostic::new(
-                    Code::CircleEndNotOnCircle,
-                    span,
-                    format!("the end point is {difference:.4} off the circle, more than the tolerance {tolerance:.4} (alarm 14040)"),
-                ));
-                None
-            }
-            Err(CircleError::RadiusTooSmall { chord, radius }) => {
-                diagnostics.push(Diagnostic::new(
-                    Code::CircleRadiusTooSmall,
-                    span,
-                    format!("CR={radius:.4} is smaller than half the distance to the end point ({:.4}): no such circle exists", chord / 2.0),
-                ));
-                None
-            }
-            Err(CircleError::RadiusFullCircle) => {
-                diagnostics.push(Diagnostic::new(
-                    Code::CircleRadiusFullCircle,
-                    span,
-                    "CR cannot program a full circle: the end point equals the start point (alarm 14040)",
-                ));
-                None
-            }
-        }
     }
 
     fn plane_axis_indexes(&self) -> Vec<usize> {
