@@ -271,6 +271,13 @@ impl<'a> Engine<'a> {
                             diagnostics,
                         );
                     }
+                    AddressKind::Named(NamedAddress::Positioning | NamedAddress::IndirectAxis)
+                        if functions.frame_or_pole.is_none() =>
+                    {
+                        // POS[X]=, POSA[X]= and AX[X]= move an axis; they are not followed, so the
+                        // axis becomes unknown. SPOS and SPOSA position a spindle, not an axis.
+                        self.forget_indirect_axis(line, block, word);
+                    }
                     AddressKind::Named(NamedAddress::Turns) => {
                         circle_words.turns =
                             Some((self.word_value(line, block, word, diagnostics), word.span));
@@ -583,6 +590,10 @@ impl<'a> Engine<'a> {
             Some(value)
         } else {
             match reference {
+                // A modulo axis counts 0 to 360 degrees: an increment wraps (reference §3.5).
+                Some(previous) if kind == AxisKind::Modulo => {
+                    Some((previous + value).rem_euclid(360.0))
+                }
                 Some(previous) => Some(previous + value),
                 None => {
                     diagnostics.push(Diagnostic::new(
@@ -596,6 +607,35 @@ impl<'a> Engine<'a> {
         };
         self.state.program(index, target);
         target.is_some()
+    }
+
+    /// `POS[X]=`, `POSA[X]=`, `AX[X]=`: the named axis becomes unknown; every axis when the name is not
+    /// written out.
+    fn forget_indirect_axis(&mut self, line: &str, block: &Block, word: &AddressWord) {
+        let name = line[word.name.start()..word.name.end()].to_ascii_uppercase();
+        if name.starts_with("SPOS") {
+            return;
+        }
+        let axis = match &word.extension {
+            Some(Extension::Index { indexes, .. }) if indexes.len() == 1 => {
+                let expr = block.expr(indexes[0]);
+                match &expr.kind {
+                    ExprKind::Name { indexes } if indexes.is_empty() => {
+                        self.axis_index(&line[expr.span.start()..expr.span.end()])
+                    }
+                    _ => None,
+                }
+            }
+            _ => None,
+        };
+        match axis {
+            Some(index) => self.program_axis(index, None),
+            None => {
+                for index in 0..self.config.axes.len() {
+                    self.program_axis(index, None);
+                }
+            }
+        }
     }
 
     /// The block programs axis `index` to `value` in workpiece coordinates.
