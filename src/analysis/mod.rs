@@ -13,6 +13,8 @@ pub mod document;
 pub mod engine;
 pub mod eval;
 pub mod frame;
+pub mod machine;
+pub mod offsets;
 pub mod position_reads;
 pub mod resolution;
 pub mod state;
