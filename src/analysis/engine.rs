@@ -241,14 +241,33 @@ impl<'a> Engine<'a> {
 
     /// An engine that continues where `snapshot` was taken, on the same configuration.
     pub fn from_snapshot(config: &'a MachineConfig, snapshot: EngineSnapshot) -> Engine<'a> {
-        let engine = Engine::new(config);
+        // Every field is named (no `..`), so that a field added to the engine must be decided here:
+        // carried in the snapshot, or rebuilt from the configuration.
+        let Engine {
+            config,
+            state: _,
+            flow_uncertain: _,
+            missing_feed_reported: _,
+            axis_names,
+            start_positions,
+            last_arc,
+            slots,
+            written,
+            stale_offset_data: _,
+            tangent: _,
+        } = Engine::new(config);
         Engine {
+            config,
             state: snapshot.state,
             flow_uncertain: snapshot.flow_uncertain,
             missing_feed_reported: snapshot.missing_feed_reported,
+            axis_names,
+            start_positions,
+            last_arc,
+            slots,
+            written,
             stale_offset_data: snapshot.stale_offset_data,
             tangent: snapshot.tangent,
-            ..engine
         }
     }
 
