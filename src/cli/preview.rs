@@ -6,7 +6,7 @@ use super::source_file::read_source_file;
 use super::{EXIT_ERRORS_FOUND, EXIT_OK, EXIT_TROUBLE};
 use crate::analysis::{analyze_program, Move, ProgramKind};
 use crate::config::{discover_config_file, load_config_file, MachineConfig};
-use crate::diagnostics::Severity;
+use crate::diagnostics::{LineDiagnostic, Severity, Span};
 use serde_json::{json, Map, Value};
 use std::io::{self, Write};
 use std::path::Path;
@@ -69,26 +69,48 @@ fn write_json(
     analysis: &crate::analysis::Analysis,
 ) -> io::Result<()> {
     let mut out = io::BufWriter::new(stdout);
+    let lines = ProgramLines::new(text);
+    write_preview_json(
+        &mut out,
+        &options.path.display().to_string(),
+        config.metric,
+        &analysis.moves,
+        &analysis.diagnostics,
+        &mut |line_idx, span| lines.columns(line_idx, span),
+    )?;
+    out.flush()
+}
+
+/// The JSON document of `preview` (and of the language server's `sinumerik.endpointPreview`) for
+/// `moves` and `diagnostics` of the program `file`; `columns` gives the 1-based character columns
+/// of a span in a 0-based line.
+pub(crate) fn write_preview_json(
+    out: &mut dyn Write,
+    file: &str,
+    metric: bool,
+    moves: &[Move],
+    diagnostics: &[LineDiagnostic],
+    columns: &mut dyn FnMut(usize, Span) -> (usize, usize),
+) -> io::Result<()> {
     let header = json!({
-        "file": options.path.display().to_string(),
-        "units": if config.metric { "mm" } else { "inch" },
+        "file": file,
+        "units": if metric { "mm" } else { "inch" },
     });
     let header = serde_json::to_string(&header)?;
     // The header object without its closing brace, then the two arrays.
     write!(out, "{},\n\"moves\": [", &header[..header.len() - 1])?;
-    for (index, movement) in analysis.moves.iter().enumerate() {
+    for (index, movement) in moves.iter().enumerate() {
         let separator = if index == 0 { "\n" } else { ",\n" };
         write!(out, "{separator}  ")?;
-        serde_json::to_writer(&mut out, &move_json(movement))?;
+        serde_json::to_writer(&mut *out, &move_json(movement))?;
     }
     write!(out, "\n],\n\"diagnostics\": [")?;
-    let lines = ProgramLines::new(text);
-    for (index, item) in analysis.diagnostics.iter().enumerate() {
-        let (column, end_column) = lines.columns(item.line, item.diagnostic.span);
+    for (index, item) in diagnostics.iter().enumerate() {
+        let (column, end_column) = columns(item.line, item.diagnostic.span);
         let separator = if index == 0 { "\n" } else { ",\n" };
         write!(out, "{separator}  ")?;
         serde_json::to_writer(
-            &mut out,
+            &mut *out,
             &json!({
                 "line": item.line + 1,
                 "column": column,
@@ -99,8 +121,12 @@ fn write_json(
             }),
         )?;
     }
-    writeln!(out, "\n]}}")?;
-    out.flush()
+    writeln!(out, "\n]}}")
+}
+
+/// The 1-based character columns of a span in one line of text.
+pub(crate) fn line_columns(line: &str, span: Span) -> (usize, usize) {
+    ProgramLines::new(line).columns(0, span)
 }
 
 fn config_for(options: &PreviewOptions) -> Result<MachineConfig, String> {

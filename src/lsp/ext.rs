@@ -1,0 +1,18 @@
+//! The server's own protocol additions: the `sinumerik.endpointPreview` command's arguments.
+//! Its result is the JSON document of `sinumerik-lsp preview` (see the README).
+
+use serde::Deserialize;
+use tower_lsp_server::ls_types::Uri;
+
+/// The command that returns the resolved moves of a document, open or on disk.
+pub const ENDPOINT_PREVIEW_COMMAND: &str = "sinumerik.endpointPreview";
+
+/// One argument of `sinumerik.endpointPreview`: a document and, optionally, its lines
+/// `startLine ..= endLine` (0-based, both included).
+#[derive(Debug, Clone, Deserialize)]
+#[serde(rename_all = "camelCase", deny_unknown_fields)]
+pub struct EndpointPreviewParams {
+    pub uri: Uri,
+    pub start_line: Option<u32>,
+    pub end_line: Option<u32>,
+}
