@@ -106,6 +106,12 @@ impl OpenDocument {
         lock(&self.text).revision
     }
 
+    /// The version and the whole text as they are now.
+    pub fn text_now(&self) -> (i32, String) {
+        let text = lock(&self.text);
+        (text.text.version, text.text.rope.to_string())
+    }
+
     /// Applies a `didChange` synchronously and starts the analysis. Called before any `.await` of
     /// the handler, so edits are applied in the order they arrive.
     pub fn change(

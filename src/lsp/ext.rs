@@ -16,3 +16,20 @@ pub struct EndpointPreviewParams {
     pub start_line: Option<u32>,
     pub end_line: Option<u32>,
 }
+
+/// `sinumerik/documentText`: the server's copy of an open document, to check that it is in step with
+/// the editor (rust-analyzer has the same kind of request for the same reason).
+pub const DOCUMENT_TEXT_REQUEST: &str = "sinumerik/documentText";
+
+#[derive(Debug, Clone, Deserialize)]
+#[serde(rename_all = "camelCase")]
+pub struct DocumentTextParams {
+    pub uri: Uri,
+}
+
+#[derive(Debug, Clone, serde::Serialize)]
+#[serde(rename_all = "camelCase")]
+pub struct DocumentTextResult {
+    pub version: i32,
+    pub text: String,
+}

@@ -40,7 +40,9 @@ where
     I: AsyncRead + Unpin,
     O: AsyncWrite,
 {
-    let (service, socket) = LspService::new(server::Backend::new);
+    let (service, socket) = LspService::build(server::Backend::new)
+        .custom_method(ext::DOCUMENT_TEXT_REQUEST, server::Backend::document_text)
+        .finish();
     Server::new(input, output, socket).serve(service).await;
 }
 

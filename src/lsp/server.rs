@@ -8,7 +8,9 @@ use crate::lsp::code_action::code_actions;
 use crate::lsp::convert::PositionEncoding;
 use crate::lsp::documents::{lock, Analysed, Documents, OpenDocument, WorkerContext};
 use crate::lsp::endpoint_preview;
-use crate::lsp::ext::{EndpointPreviewParams, ENDPOINT_PREVIEW_COMMAND};
+use crate::lsp::ext::{
+    DocumentTextParams, DocumentTextResult, EndpointPreviewParams, ENDPOINT_PREVIEW_COMMAND,
+};
 use crate::lsp::hover::hover;
 use crate::lsp::inlay::inlay_hints;
 use crate::lsp::log::HandlerTimer;
@@ -130,6 +132,15 @@ impl Backend {
                 ),
             }
         });
+    }
+}
+
+impl Backend {
+    /// `sinumerik/documentText`.
+    pub async fn document_text(&self, params: DocumentTextParams) -> Result<DocumentTextResult> {
+        let document = self.documents.get(&params.uri).ok_or_else(|| not_open(&params.uri))?;
+        let (version, text) = document.text_now();
+        Ok(DocumentTextResult { version, text })
     }
 }
 
