@@ -14,6 +14,7 @@ use std::sync::Arc;
 
 mod circles;
 mod frame_variables;
+mod macros;
 
 /// A block that moves axes.
 #[derive(Debug, Clone, PartialEq)]
@@ -109,6 +110,10 @@ pub struct Engine<'a> {
     /// The direction of the path at the end of the last move, in the plane (by index) it moved in,
     /// for CT; `None` when unknown.
     tangent: Option<(usize, (f64, f64))>,
+    /// Macros defined so far with `DEFINE name AS body`: upper-case name and body text.
+    macros: Vec<(String, String)>,
+    /// How many macro expansions the current block is inside of.
+    expansion_depth: u8,
 }
 
 /// The non-modal G functions of one block that change what its axis words mean.
@@ -137,6 +142,8 @@ impl<'a> Engine<'a> {
             written: vec![0; config.axes.len()],
             stale_offset_data: None,
             tangent: None,
+            macros: Vec::new(),
+            expansion_depth: 0,
         }
     }
 
@@ -164,6 +171,10 @@ impl<'a> Engine<'a> {
     ) -> Option<Move> {
         if block.is_header {
             return None;
+        }
+        self.record_macro_definitions(line, block);
+        if let Some((expanded, used_at)) = self.expand_macro(line, block) {
+            return self.apply_expanded(line_index, &expanded, used_at, diagnostics);
         }
         let statements = block.interpreted_statements();
         // A label may be the target of a backward jump and a structure keyword opens a loop or branch:
