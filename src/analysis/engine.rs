@@ -12,6 +12,7 @@ use crate::syntax::gcodes::GCode;
 use std::borrow::Cow;
 use std::sync::Arc;
 
+mod checks;
 mod circles;
 mod frame_variables;
 mod macros;
@@ -64,6 +65,8 @@ struct PolarWords {
     angle: Option<(Option<f64>, bool)>,
     radius: Option<Option<f64>>,
     span: Option<crate::diagnostics::Span>,
+    /// The span of an AP written without `=IC`/`=AC`.
+    plain_angle_span: Option<crate::diagnostics::Span>,
 }
 
 /// The circle words of one block: I, J, K (value, absolute) in the basic unit system, and CR.
@@ -114,6 +117,12 @@ pub struct Engine<'a> {
     macros: Vec<(String, String)>,
     /// How many macro expansions the current block is inside of.
     expansion_depth: u8,
+    /// A pole or plane change since the last polar move: AP and RP must be written again.
+    pole_changed: bool,
+    /// Which unit functions the program has programmed: 1 for G70/G71, 2 for G700/G710.
+    unit_kinds_used: u8,
+    feed_programmed: bool,
+    unit_mix_reported: bool,
 }
 
 /// The non-modal G functions of one block that change what its axis words mean.
@@ -144,6 +153,10 @@ impl<'a> Engine<'a> {
             tangent: None,
             macros: Vec::new(),
             expansion_depth: 0,
+            pole_changed: false,
+            unit_kinds_used: 0,
+            feed_programmed: false,
+            unit_mix_reported: false,
         }
     }
 
@@ -193,6 +206,7 @@ impl<'a> Engine<'a> {
         let mut functions = BlockFunctions::default();
         let mut forget_for_frames = false;
         let mut offset_selected = false;
+        let units_before = self.state.groups[13];
         self.written.iter_mut().for_each(|kind| *kind = 0);
         for statement in statements {
             if let Statement::GCode { code, .. } = statement {
@@ -217,6 +231,7 @@ impl<'a> Engine<'a> {
                 }
             }
         }
+        self.check_units(units_before, statements, diagnostics);
         if offset_selected {
             self.stale_offset_data = None;
             self.state.offset = self.state.selected_offset(self.config);
@@ -253,6 +268,9 @@ impl<'a> Engine<'a> {
                         let value = self.word_value(line, block, word, diagnostics);
                         polar.angle = Some((value, incremental));
                         polar.span = Some(word.span);
+                        if word.value.modifier.is_none() && functions.frame_or_pole.is_none() {
+                            polar.plain_angle_span = Some(word.span);
+                        }
                     }
                     AddressKind::Named(NamedAddress::PolarRadius) => {
                         let value = self.word_value(line, block, word, diagnostics);
@@ -352,8 +370,10 @@ impl<'a> Engine<'a> {
             }
         }
         if self.state.plane_index() != plane_before {
-            // The stored AP belongs to the old plane (reference §5.2).
+            // The stored AP and RP belong to the old plane (reference §5.2).
             self.state.polar_angle = None;
+            self.state.polar_radius = None;
+            self.pole_changed = true;
         }
         let mut polar_circle_centre = None;
         if let Some(code) = functions.frame_or_pole {
@@ -366,6 +386,7 @@ impl<'a> Engine<'a> {
             }
         } else if polar.angle.is_some() || polar.radius.is_some() {
             moved = true;
+            self.check_polar_words(&polar, diagnostics);
             polar_circle_centre = self.apply_polar_move(line, statements, &polar, diagnostics);
         }
         if let Some(feed) = feed_in_block {
@@ -852,6 +873,9 @@ impl<'a> Engine<'a> {
     ) {
         use crate::analysis::state::Pole;
         self.state.polar_angle = None;
+        // What a stored RP means for the new pole is not documented (reference §5.2 [?]).
+        self.state.polar_radius = None;
+        self.pole_changed = true;
         let Some(plane) = self.state.plane_index() else {
             return;
         };

@@ -52,13 +52,16 @@ impl Engine<'_> {
         let end = (self.state.positions[first]?, self.state.positions[second]?);
         let error_const = self.config.circle_error_const;
         let error_factor = self.config.circle_error_factor;
-        let result = if let Some(radius) = words.radius {
-            circle::from_radius(start, end, radius, clockwise, error_const, error_factor)
-        } else {
-            let centre = self.programmed_centre(first, second, start, words);
-            let result =
-                circle::from_centre(start, end, centre, clockwise, error_const, error_factor);
-            if result.is_err() {
+        if let Some(radius) = words.radius {
+            return circle::from_radius(start, end, radius, clockwise, error_const, error_factor)
+                .map_err(|error| report_circle_error(error, span, diagnostics))
+                .ok();
+        }
+        let centre = self.programmed_centre(first, second, start, words);
+        match circle::from_centre(start, end, centre, clockwise, error_const, error_factor) {
+            Ok(circle) => Some(circle),
+            Err(error) => {
+                report_circle_error(error, span, diagnostics);
                 self.check_centre_looks_absolute(
                     first,
                     second,
@@ -68,12 +71,9 @@ impl Engine<'_> {
                     words,
                     diagnostics,
                 );
+                None
             }
-            result
-        };
-        result
-            .map_err(|error| report_circle_error(error, span, diagnostics))
-            .ok()
+        }
     }
 
     /// The centre from I/J/K: incremental from the start unless `=AC`; a left-out parameter is 0
