@@ -1,7 +1,7 @@
 //! Applies one parsed block to the modal state, the way the control's interpreter does, and describes
-//! the resulting move. What this engine does not model yet (settable offsets, spatial rotations, calls
-//! of subprograms, jumps) turns the affected values into "unknown" or
-//! "uncertain": it never shows a number it cannot stand behind.
+//! the resulting move. What this engine does not model (spatial rotations, basic frames, calls of
+//! subprograms, jumps) turns the affected values into "unknown" or "uncertain": it never shows a
+//! number it cannot stand behind.
 
 use crate::analysis::eval::{evaluate, EvalError, Variables};
 use crate::analysis::state::ModalState;
@@ -123,6 +123,9 @@ pub struct Engine<'a> {
     unit_kinds_used: u8,
     feed_programmed: bool,
     unit_mix_reported: bool,
+    /// The geometry slots (X, Y, Z) whose mapping a rotating, scaling or mirroring frame change has
+    /// altered since the last move.
+    rotated_slots: [bool; 3],
 }
 
 /// The non-modal G functions of one block that change what its axis words mean.
@@ -157,6 +160,7 @@ impl<'a> Engine<'a> {
             unit_kinds_used: 0,
             feed_programmed: false,
             unit_mix_reported: false,
+            rotated_slots: [false; 3],
         }
     }
 
@@ -380,7 +384,14 @@ impl<'a> Engine<'a> {
             if matches!(code.name().as_ref(), "G110" | "G111" | "G112") {
                 self.define_pole(code, line, block, statements, &polar, diagnostics);
             } else {
+                let frame_before = self.state.frame;
                 self.apply_frame_instruction(code, line, block, statements, diagnostics);
+                if let (Some(before), Some(after)) = (frame_before, self.state.frame) {
+                    for (slot, rotated) in self.rotated_slots.iter_mut().enumerate() {
+                        *rotated |=
+                            (0..3).any(|row| before.matrix[row][slot] != after.matrix[row][slot]);
+                    }
+                }
                 // A frame instruction moves nothing: the axes keep their machine set-points.
                 crate::analysis::machine::reexpress(&mut self.state, &self.slots, true);
             }
@@ -455,6 +466,9 @@ impl<'a> Engine<'a> {
                 circle_words.span.unwrap_or_default(),
                 format!("the data of {name} ($P_UIFR[{index}]) were changed while {name} was active; this move still uses the old data: program {name} again to activate them"),
             ));
+        }
+        if moves_axes {
+            self.check_axes_after_rotation(circle_words.span.unwrap_or_default(), diagnostics);
         }
         if functions.machine_coordinates && find_word(statements, AddressKind::Axis).is_none() {
             // G53/G153/SUPA are non-modal (reference §2.3, §9.2 #13).

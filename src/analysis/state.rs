@@ -246,9 +246,10 @@ impl ModalState {
             self.groups[group] = None;
         }
         self.poles = [Pole::Unknown; 3];
-        // The caller's frames are not known either.
+        // The caller's frames are not known either, nor whether it changed the stored offsets.
         self.frame = None;
         self.offset.iter_mut().for_each(|value| *value = None);
+        self.settable_data.forget_all();
     }
 
     /// The first and second axis of the active plane (see [`PLANE_AXES`]); `None` when inherited.

@@ -13,6 +13,44 @@ fn is_inch(code: GCode) -> bool {
 }
 
 impl Engine<'_> {
+    /// At the first move after a rotating, scaling or mirroring frame change: A224 for the geometry
+    /// axes the change affects that the move leaves out (reference §3.9 [?]).
+    pub(super) fn check_axes_after_rotation(
+        &mut self,
+        span: crate::diagnostics::Span,
+        diagnostics: &mut Vec<Diagnostic>,
+    ) {
+        let rotated = std::mem::take(&mut self.rotated_slots);
+        let left_out: Vec<&str> = (0..self.config.axes.len())
+            .filter(|&index| {
+                // Only where the change gave the axis a workpiece value other than the one last
+                // programmed does leaving it out move it unexpectedly.
+                let shifted = match (self.state.positions[index], self.state.programmed[index]) {
+                    (Some(current), Some(programmed)) => (current - programmed).abs() > 1e-9,
+                    (None, None) => false,
+                    _ => true,
+                };
+                self.slots.slot(index).is_some_and(|slot| rotated[slot])
+                    && self.written[index] == 0
+                    && self.state.touched[index]
+                    && shifted
+            })
+            .map(|index| self.config.axes[index].name.as_str())
+            .collect();
+        if !left_out.is_empty() {
+            let (verb, pronoun) = if left_out.len() == 1 {
+                ("is", "it")
+            } else {
+                ("are", "them")
+            };
+            diagnostics.push(Diagnostic::new(
+                Code::AxisLeftOutAfterRotation,
+                span,
+                format!("{} {verb} left out of the first move after a frame change that rotates, scales or mirrors: the last programmed value is not kept, the position in the new coordinates is, so this move may move {pronoun} too; program all geometry axes here", left_out.join(", ")),
+            ));
+        }
+    }
+
     /// After the block's G functions: A221 when the unit system switches while G41/G42 is active, and
     /// A220 once a program has used G70/G71 and G700/G710 and programmed F.
     pub(super) fn check_units(
