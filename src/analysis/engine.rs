@@ -126,6 +126,8 @@ pub struct Engine<'a> {
     /// The geometry slots (X, Y, Z) whose mapping a rotating, scaling or mirroring frame change has
     /// altered since the last move.
     rotated_slots: [bool; 3],
+    /// The configuration indexes of the first and second axis of G17, G18 and G19.
+    plane_axis_cache: [(Option<usize>, Option<usize>); 3],
 }
 
 /// The non-modal G functions of one block that change what its axis words mean.
@@ -161,6 +163,15 @@ impl<'a> Engine<'a> {
             feed_programmed: false,
             unit_mix_reported: false,
             rotated_slots: [false; 3],
+            plane_axis_cache: crate::analysis::state::PLANE_AXES.map(|(first, second)| {
+                let index = |name: &str| {
+                    config
+                        .axes
+                        .iter()
+                        .position(|axis| axis.name.eq_ignore_ascii_case(name))
+                };
+                (index(first), index(second))
+            }),
         }
     }
 
@@ -211,11 +222,15 @@ impl<'a> Engine<'a> {
         let mut forget_for_frames = false;
         let mut offset_selected = false;
         let units_before = self.state.groups[13];
+        let mut unit_word = None;
         self.written.iter_mut().for_each(|kind| *kind = 0);
         for statement in statements {
-            if let Statement::GCode { code, .. } = statement {
+            if let Statement::GCode { code, span } = statement {
                 if code.is_modal() {
                     self.state.set_modal(*code);
+                    if code.group() == 13 {
+                        unit_word = Some((*code, *span));
+                    }
                     // Selecting a settable offset activates its stored data, also when the same
                     // function is programmed again (reference §7.4).
                     offset_selected |= code.group() == 8;
@@ -235,7 +250,6 @@ impl<'a> Engine<'a> {
                 }
             }
         }
-        self.check_units(units_before, statements, diagnostics);
         if offset_selected {
             self.stale_offset_data = None;
             self.state.offset = self.state.selected_offset(self.config);
@@ -373,6 +387,13 @@ impl<'a> Engine<'a> {
                 _ => {}
             }
         }
+        self.check_units(
+            units_before,
+            unit_word,
+            feed_in_block.is_some(),
+            statements,
+            diagnostics,
+        );
         if self.state.plane_index() != plane_before {
             // The stored AP and RP belong to the old plane (reference §5.2).
             self.state.polar_angle = None;
@@ -483,11 +504,13 @@ impl<'a> Engine<'a> {
                 ));
             }
         }
-        crate::analysis::machine::store_machine_targets(
-            &mut self.state,
-            &self.slots,
-            &self.written,
-        );
+        if functions.machine_coordinates || functions.reference_point {
+            crate::analysis::machine::store_machine_targets(
+                &mut self.state,
+                &self.slots,
+                &self.written,
+            );
+        }
         crate::analysis::machine::update_after_block(&mut self.state, &self.slots, &self.written);
         let result = (moved && functions.frame_or_pole.is_none() && !functions.dwell).then(|| {
             self.describe_move(
@@ -1087,8 +1110,8 @@ impl<'a> Engine<'a> {
 
     /// The configuration indexes of the plane's first and second axis (G17: X, Y; G18: Z, X; G19: Y, Z).
     fn plane_axes(&self) -> (Option<usize>, Option<usize>) {
-        match self.state.plane_axis_names() {
-            Some((first, second)) => (self.axis_index(first), self.axis_index(second)),
+        match self.state.plane_index() {
+            Some(plane) => self.plane_axis_cache[plane],
             // The plane is inherited from an unseen caller.
             None => (None, None),
         }

@@ -44,18 +44,6 @@ impl AxisSlots {
     }
 }
 
-/// The machine value of axis `index` for the workpiece set-points of `state`, when it is known.
-pub fn machine_value(state: &ModalState, slots: &AxisSlots, index: usize) -> Option<f64> {
-    let offset = state.offset[index]?;
-    match slots.slot(index) {
-        Some(slot) => {
-            let point = slots.geometry_point(&state.positions);
-            Some(offset + state.frame?.apply_axis(slot, point)?)
-        }
-        None => Some(offset + state.positions[index]?),
-    }
-}
-
 /// After a frame or offset change: the workpiece set-point of every axis (only X, Y, Z when
 /// `geometry_only`) becomes its unchanged machine set-point expressed in the new frames. The last
 /// programmed values stay, for G91 under SD42440 = 1.
@@ -90,25 +78,52 @@ pub fn reexpress(state: &mut ModalState, slots: &AxisSlots, geometry_only: bool)
 /// mixes it with one that was (a rotation), or when the frame is unknown.
 pub fn update_after_block(state: &mut ModalState, slots: &AxisSlots, written: &[u8]) {
     let mut written_slots = [false; 3];
+    let mut any_written = false;
     for (index, kind) in written.iter().enumerate() {
-        if let (1, Some(slot)) = (*kind, slots.slot(index)) {
-            written_slots[slot] = true;
+        if *kind == 1 {
+            any_written = true;
+            if let Some(slot) = slots.slot(index) {
+                written_slots[slot] = true;
+            }
         }
     }
-    for (index, kind) in written.iter().enumerate() {
-        let affected = match (*kind, slots.slot(index)) {
-            (1, _) => true,
-            (0, Some(slot)) => (0..3).any(|other| {
-                written_slots[other]
-                    && state
-                        .frame
-                        .is_none_or(|frame| frame.matrix[slot][other] != 0.0)
-            }),
-            _ => false,
-        };
-        if affected {
-            state.machine[index] = machine_value(state, slots, index);
+    if !any_written {
+        return;
+    }
+    // Which geometry slots the block moves: those written, and under a frame that mixes axes (or an
+    // unknown one) those mixed with a written one.
+    let mut moved_slots = written_slots;
+    match state.frame {
+        Some(frame) => {
+            for (slot, moved) in moved_slots.iter_mut().enumerate() {
+                *moved |=
+                    (0..3).any(|other| written_slots[other] && frame.matrix[slot][other] != 0.0);
+            }
         }
+        None => {
+            if written_slots.contains(&true) {
+                moved_slots = [true; 3];
+            }
+        }
+    }
+    let point = if moved_slots.contains(&true) {
+        slots.geometry_point(&state.positions)
+    } else {
+        [None; 3]
+    };
+    for (index, kind) in written.iter().enumerate() {
+        let slot = slots.slot(index);
+        let relative = match (*kind, slot) {
+            (2, _) => continue,
+            (_, Some(slot)) if moved_slots[slot] => {
+                state.frame.and_then(|frame| frame.apply_axis(slot, point))
+            }
+            (1, None) => state.positions[index],
+            _ => continue,
+        };
+        state.machine[index] = relative
+            .zip(state.offset[index])
+            .map(|(relative, offset)| relative + offset);
     }
 }
 

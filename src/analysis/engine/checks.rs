@@ -21,6 +21,9 @@ impl Engine<'_> {
         diagnostics: &mut Vec<Diagnostic>,
     ) {
         let rotated = std::mem::take(&mut self.rotated_slots);
+        if rotated == [false; 3] {
+            return;
+        }
         let left_out: Vec<&str> = (0..self.config.axes.len())
             .filter(|&index| {
                 // Only where the change gave the axis a workpiece value other than the one last
@@ -56,13 +59,11 @@ impl Engine<'_> {
     pub(super) fn check_units(
         &mut self,
         units_before: Option<GCode>,
+        unit_word: Option<(GCode, crate::diagnostics::Span)>,
+        feed_written: bool,
         statements: &[Statement],
         diagnostics: &mut Vec<Diagnostic>,
     ) {
-        let unit_word = statements.iter().find_map(|statement| match statement {
-            Statement::GCode { code, span } if code.group() == 13 => Some((*code, *span)),
-            _ => None,
-        });
         if let Some((code, span)) = unit_word {
             let compensating = self.state.groups[7]
                 .is_some_and(|active| matches!(active.name().as_ref(), "G41" | "G42"));
@@ -77,13 +78,13 @@ impl Engine<'_> {
             let kind = if code.name().len() == 4 { 2 } else { 1 };
             self.unit_kinds_used |= kind;
         }
-        let feed_word = statements.iter().find_map(|statement| match statement {
-            Statement::Address(word) if word.kind == AddressKind::Feed => Some(word.span),
-            _ => None,
-        });
-        self.feed_programmed |= feed_word.is_some();
+        self.feed_programmed |= feed_written;
         if self.unit_kinds_used == 3 && self.feed_programmed && !self.unit_mix_reported {
             self.unit_mix_reported = true;
+            let feed_word = statements.iter().find_map(|statement| match statement {
+                Statement::Address(word) if word.kind == AddressKind::Feed => Some(word.span),
+                _ => None,
+            });
             let span = unit_word
                 .map(|(_, span)| span)
                 .or(feed_word)

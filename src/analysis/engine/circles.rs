@@ -293,11 +293,11 @@ impl Engine<'_> {
         start_positions: &[Option<f64>],
         arc: Option<&Circle>,
     ) {
-        let (Some(first), Some(second), Some(plane)) = (
-            self.plane_axes().0,
-            self.plane_axes().1,
-            self.state.plane_index(),
-        ) else {
+        let Some(plane) = self.state.plane_index() else {
+            self.tangent = None;
+            return;
+        };
+        let (Some(first), Some(second)) = self.plane_axis_cache[plane] else {
             self.tangent = None;
             return;
         };
@@ -307,7 +307,8 @@ impl Engine<'_> {
             (Some(arc), _, Some(end)) => Some((plane, circle::end_tangent(arc, end))),
             (None, Some(start), Some(end)) if matches!(motion, "G0" | "G1") => {
                 let direction = (end.0 - start.0, end.1 - start.1);
-                (direction.0.hypot(direction.1) > 1e-9).then_some((plane, direction))
+                (direction.0 * direction.0 + direction.1 * direction.1 > 1e-18)
+                    .then_some((plane, direction))
             }
             _ => None,
         };
