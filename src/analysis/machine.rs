@@ -142,3 +142,52 @@ pub fn store_machine_targets(state: &mut ModalState, slots: &AxisSlots, written:
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::analysis::frame::Frame;
+
+    fn state_at(config: &MachineConfig, machine: [f64; 3]) -> ModalState {
+        let mut state = ModalState::reset(config);
+        for (index, value) in machine.iter().enumerate() {
+            state.program(index, Some(*value));
+            state.machine[index] = Some(*value);
+        }
+        state
+    }
+
+    #[test]
+    fn a_frame_change_keeps_the_machine_position() {
+        let config = MachineConfig::mill();
+        let slots = AxisSlots::new(&config);
+        let mut state = state_at(&config, [10.0, 0.0, 5.0]);
+        state.frame = Some(Frame::rotation_in_plane(0, 1, 90.0));
+        reexpress(&mut state, &slots, true);
+        // Machine (10, 0) seen in a frame turned by 90°: (0, -10); Z and the last programmed values stay.
+        assert_eq!(state.positions[..3], [Some(0.0), Some(-10.0), Some(5.0)]);
+        assert_eq!(state.programmed[0], Some(10.0));
+        // Programming X alone moves Y in the machine too: the frame mixes them, Z is not touched.
+        state.program(0, Some(10.0));
+        update_after_block(&mut state, &slots, &[1, 0, 0, 0, 0, 0]);
+        assert_eq!(state.machine[..3], [Some(10.0), Some(10.0), Some(5.0)]);
+    }
+
+    #[test]
+    fn an_unknown_offset_leaves_unmoved_axes_alone() {
+        let config = MachineConfig::mill();
+        let slots = AxisSlots::new(&config);
+        let mut state = state_at(&config, [1.0, 2.0, 3.0]);
+        state.offset = vec![None; config.axes.len()];
+        reexpress(&mut state, &slots, false);
+        assert_eq!(state.positions[..3], [None, None, None]);
+        state.program(0, Some(4.0));
+        update_after_block(&mut state, &slots, &[1, 0, 0, 0, 0, 0]);
+        assert_eq!(state.machine[..3], [None, Some(2.0), Some(3.0)]);
+        // A G53 target is stored in workpiece coordinates of the active frames, here unknown.
+        state.machine[1] = Some(0.0);
+        store_machine_targets(&mut state, &slots, &[0, 2, 0, 0, 0, 0]);
+        assert_eq!(state.positions[1], None);
+        assert_eq!(state.machine[1], Some(0.0));
+    }
+}
