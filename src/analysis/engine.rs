@@ -252,8 +252,7 @@ impl<'a> Engine<'a> {
         }
         if offset_selected {
             self.stale_offset_data = None;
-            self.state.offset = self.state.selected_offset(self.config);
-            crate::analysis::machine::reexpress(&mut self.state, &self.slots, false);
+            self.change_offset(self.state.selected_offset(self.config));
         }
         let mut start_positions = std::mem::take(&mut self.start_positions);
         start_positions.clear();
@@ -414,7 +413,11 @@ impl<'a> Engine<'a> {
                     }
                 }
                 // A frame instruction moves nothing: the axes keep their machine set-points.
-                crate::analysis::machine::reexpress(&mut self.state, &self.slots, true);
+                crate::analysis::machine::reexpress(
+                    &mut self.state,
+                    &self.slots,
+                    crate::analysis::machine::Replaced::Frame(frame_before),
+                );
             }
         } else if polar.angle.is_some() || polar.radius.is_some() {
             moved = true;

@@ -44,31 +44,61 @@ impl AxisSlots {
     }
 }
 
-/// After a frame or offset change: the workpiece set-point of every axis (only X, Y, Z when
-/// `geometry_only`) becomes its unchanged machine set-point expressed in the new frames. The last
-/// programmed values stay, for G91 under SD42440 = 1.
-pub fn reexpress(state: &mut ModalState, slots: &AxisSlots, geometry_only: bool) {
-    let inverse = state.frame.and_then(|frame| frame.inverse());
-    let mut relative = [None; 3];
-    for index in 0..state.machine.len() {
-        if let Some(slot) = slots.slot(index) {
-            relative[slot] = state.machine[index]
-                .zip(state.offset[index])
-                .map(|(machine, offset)| machine - offset);
+/// What a frame or offset change replaced, for [`reexpress`].
+pub enum Replaced {
+    /// The programmable frame before the change (the settable offset stayed).
+    Frame(Option<crate::analysis::frame::Frame>),
+    /// The settable offset before the change (the programmable frame stayed).
+    Offset(Vec<Option<f64>>),
+}
+
+/// After a frame or offset change: the workpiece set-point of every axis the change concerns (X, Y, Z
+/// for the programmable frame, all axes for the offset) becomes its unchanged machine set-point
+/// expressed in the new frames. The machine set-point itself may be unknown: a change of the
+/// programmable frame alone is followed from the workpiece values, since the offset outside it stays.
+/// The last programmed values stay, for G91 under SD42440 = 1.
+pub fn reexpress(state: &mut ModalState, slots: &AxisSlots, replaced: Replaced) {
+    let (old_frame, old_offset, offset_changed) = match &replaced {
+        Replaced::Frame(frame) => (*frame, &state.offset, false),
+        Replaced::Offset(offset) => (state.frame, offset, true),
+    };
+    let difference = |a: Option<f64>, b: Option<f64>| a.zip(b).map(|(a, b)| a - b);
+    let workpiece = slots.geometry_point(&state.positions);
+    // Each axis in the coordinates between the settable offset and the programmable frame, before and
+    // after the change.
+    let mut parent = vec![None; state.machine.len()];
+    for (index, value) in parent.iter_mut().enumerate() {
+        let slot = slots.slot(index);
+        if slot.is_none() && !offset_changed {
+            continue;
         }
-    }
-    for index in 0..state.machine.len() {
-        let value = match slots.slot(index) {
-            Some(slot) => inverse.and_then(|inverse| inverse.apply_axis(slot, relative)),
-            None if geometry_only => continue,
-            None => state.machine[index]
-                .zip(state.offset[index])
-                .map(|(machine, offset)| machine - offset),
+        let before = difference(state.machine[index], old_offset[index]).or_else(|| match slot {
+            Some(slot) => old_frame.and_then(|frame| frame.apply_axis(slot, workpiece)),
+            None => state.positions[index],
+        });
+        *value = if offset_changed {
+            let machine = state.machine[index].or_else(|| {
+                before
+                    .zip(old_offset[index])
+                    .map(|(before, offset)| before + offset)
+            });
+            difference(machine, state.offset[index])
+        } else {
+            before
         };
-        if value.is_some() || state.positions[index].is_some() {
+    }
+    let inverse = state.frame.and_then(|frame| frame.inverse());
+    let parent_point = slots.geometry_point(&parent);
+    for (index, value) in parent.iter().enumerate() {
+        let new = match slots.slot(index) {
+            Some(slot) => inverse.and_then(|inverse| inverse.apply_axis(slot, parent_point)),
+            None if offset_changed => *value,
+            None => continue,
+        };
+        if new.is_some() || state.positions[index].is_some() {
             state.touched[index] = true;
         }
-        state.positions[index] = value;
+        state.positions[index] = new;
     }
 }
 
@@ -134,7 +164,8 @@ pub fn store_machine_targets(state: &mut ModalState, slots: &AxisSlots, written:
         return;
     }
     let saved = state.positions.clone();
-    reexpress(state, slots, false);
+    let offset = state.offset.clone();
+    reexpress(state, slots, Replaced::Offset(offset));
     let expressed = std::mem::replace(&mut state.positions, saved);
     for (index, kind) in written.iter().enumerate() {
         if *kind == 2 {
@@ -162,8 +193,9 @@ mod tests {
         let config = MachineConfig::mill();
         let slots = AxisSlots::new(&config);
         let mut state = state_at(&config, [10.0, 0.0, 5.0]);
+        let before = state.frame;
         state.frame = Some(Frame::rotation_in_plane(0, 1, 90.0));
-        reexpress(&mut state, &slots, true);
+        reexpress(&mut state, &slots, Replaced::Frame(before));
         // Machine (10, 0) seen in a frame turned by 90°: (0, -10); Z and the last programmed values stay.
         assert_eq!(state.positions[..3], [Some(0.0), Some(-10.0), Some(5.0)]);
         assert_eq!(state.programmed[0], Some(10.0));
@@ -178,8 +210,8 @@ mod tests {
         let config = MachineConfig::mill();
         let slots = AxisSlots::new(&config);
         let mut state = state_at(&config, [1.0, 2.0, 3.0]);
-        state.offset = vec![None; config.axes.len()];
-        reexpress(&mut state, &slots, false);
+        let before = std::mem::replace(&mut state.offset, vec![None; config.axes.len()]);
+        reexpress(&mut state, &slots, Replaced::Offset(before));
         assert_eq!(state.positions[..3], [None, None, None]);
         state.program(0, Some(4.0));
         update_after_block(&mut state, &slots, &[1, 0, 0, 0, 0, 0]);

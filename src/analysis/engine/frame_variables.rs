@@ -11,6 +11,26 @@ use crate::syntax::ast::{Block, ExprId, ExprKind};
 use crate::syntax::gcodes::GCode;
 
 impl Engine<'_> {
+    /// The active settable offset becomes `offset`; the axes keep their machine set-points.
+    pub(super) fn change_offset(&mut self, offset: Vec<Option<f64>>) {
+        let before = std::mem::replace(&mut self.state.offset, offset);
+        machine::reexpress(
+            &mut self.state,
+            &self.slots,
+            machine::Replaced::Offset(before),
+        );
+    }
+
+    /// The programmable frame becomes `frame`; the axes keep their machine set-points.
+    pub(super) fn change_frame(&mut self, frame: Option<crate::analysis::frame::Frame>) {
+        let before = std::mem::replace(&mut self.state.frame, frame);
+        machine::reexpress(
+            &mut self.state,
+            &self.slots,
+            machine::Replaced::Frame(before),
+        );
+    }
+
     /// An assignment to a system variable: only frame variables matter to the modal state.
     pub(super) fn apply_system_variable_write(
         &mut self,
@@ -32,18 +52,13 @@ impl Engine<'_> {
             "$P_UIFR" => self.write_settable_data(line, block, indexes, value, diagnostics),
             "$P_IFRAME" => {
                 // The active settable frame changes at once to a value that is not followed.
-                self.state.offset.iter_mut().for_each(|value| *value = None);
-                machine::reexpress(&mut self.state, &self.slots, false);
+                self.change_offset(vec![None; self.config.axes.len()]);
             }
-            "$P_PFRAME" => {
-                self.state.frame = None;
-                machine::reexpress(&mut self.state, &self.slots, true);
-            }
+            "$P_PFRAME" => self.change_frame(None),
             _ if name.starts_with("$P_") && (name.ends_with("FRAME") || name.ends_with("FR")) => {
                 // A basic or system frame: assumed identity, now unknown, and with it every offset.
                 self.state.settable_data.forget_all();
-                self.state.offset.iter_mut().for_each(|value| *value = None);
-                machine::reexpress(&mut self.state, &self.slots, false);
+                self.change_offset(vec![None; self.config.axes.len()]);
             }
             _ => {}
         }
@@ -208,8 +223,7 @@ impl Engine<'_> {
         });
         self.state.groups[group as usize] = code;
         if group == 8 {
-            self.state.offset = self.state.selected_offset(self.config);
-            machine::reexpress(&mut self.state, &self.slots, false);
+            self.change_offset(self.state.selected_offset(self.config));
         }
     }
 }
