@@ -803,9 +803,12 @@ impl<'a> Engine<'a> {
             // Working-area limits (G25/G26) do not move the coordinate system.
             return;
         }
-        let is_length = matches!(name, "TRANS" | "ATRANS");
+        let is_length = matches!(name, "TRANS" | "ATRANS" | "G58" | "G59");
         let mut values: [Option<Option<f64>>; 3] = [None; 3];
-        let mut followable = !matches!(name, "ROTS" | "AROTS" | "G58" | "G59");
+        // G58 and G59 replace the coarse and fine translation axially; without a fine translation
+        // (MD18600 = 0) they are not followed.
+        let mut followable = !matches!(name, "ROTS" | "AROTS")
+            && (self.config.frame_fine_trans || !matches!(name, "G58" | "G59"));
         let mut rotation_in_plane = None;
         for statement in statements {
             let Statement::Address(word) = statement else {
@@ -850,7 +853,7 @@ impl<'a> Engine<'a> {
             None
         } else {
             match name {
-                "TRANS" | "ATRANS" => Some(Frame::translation([
+                "TRANS" | "ATRANS" | "G58" | "G59" => Some(Frame::translation([
                     written(0, 0.0),
                     written(1, 0.0),
                     written(2, 0.0),
@@ -892,12 +895,64 @@ impl<'a> Engine<'a> {
                 }))),
             }
         };
+        if self.config.frame_fine_trans {
+            let written = values.map(|value| value.is_some());
+            self.compose_with_fine_translation(name, element, written);
+            return;
+        }
         let absolute = matches!(name, "TRANS" | "ROT" | "SCALE" | "MIRROR");
         self.state.frame = match (absolute, element) {
             (_, None) => None,
             (true, Some(element)) => Some(element),
             (false, Some(element)) => self.state.frame.map(|frame| frame.then_inner(&element)),
         };
+    }
+
+    /// Frame composition with a fine translation (MD18600 = 1, reference §7.2): TRANS writes the
+    /// coarse part and keeps the fine one, ATRANS adds to the fine part, G58 and G59 replace the
+    /// coarse and the fine part of the written axes. Whether ROT, SCALE and MIRROR clear a fine part is
+    /// not documented: with one, the frame becomes unknown.
+    fn compose_with_fine_translation(
+        &mut self,
+        name: &str,
+        element: Option<crate::analysis::frame::Frame>,
+        written: [bool; 3],
+    ) {
+        use crate::analysis::frame::Frame;
+        let known = self.state.frame.zip(self.state.fine_translation);
+        let result = element.zip(known).and_then(|(element, (frame, fine))| {
+            let add =
+                |left: [f64; 3], right: [f64; 3]| [0, 1, 2].map(|axis| left[axis] + right[axis]);
+            match name {
+                "TRANS" => Some((Frame::translation(add(element.translation, fine)), fine)),
+                "ATRANS" => {
+                    let shift = [0, 1, 2].map(|row| {
+                        (0..3)
+                            .map(|column| frame.matrix[row][column] * element.translation[column])
+                            .sum::<f64>()
+                    });
+                    Some((frame.then_inner(&element), add(fine, shift)))
+                }
+                "G58" | "G59" => {
+                    let mut frame = frame;
+                    let mut fine = fine;
+                    for axis in (0..3).filter(|axis| written[*axis]) {
+                        let value = element.translation[axis];
+                        if name == "G58" {
+                            frame.translation[axis] = value + fine[axis];
+                        } else {
+                            frame.translation[axis] += value - fine[axis];
+                            fine[axis] = value;
+                        }
+                    }
+                    Some((frame, fine))
+                }
+                "ROT" | "SCALE" | "MIRROR" => (fine == [0.0; 3]).then_some((element, fine)),
+                _ => Some((frame.then_inner(&element), fine)),
+            }
+        });
+        self.state.frame = result.map(|(frame, _)| frame);
+        self.state.fine_translation = result.map(|(_, fine)| fine);
     }
 
     /// G110 (relative to the last programmed position), G111 (absolute), G112 (relative to the last
