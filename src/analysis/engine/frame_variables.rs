@@ -88,6 +88,9 @@ impl Engine<'_> {
             return;
         };
         let axis_count = self.config.axes.len();
+        // The assignment's value was evaluated (and its findings reported) already; evaluating its
+        // parts again must not report them twice.
+        let diagnostics = &mut Vec::new();
         let values = if self.flow_uncertain {
             // The write may run any number of times, or not at all.
             None
@@ -193,17 +196,19 @@ impl Engine<'_> {
         value: Option<ExprId>,
         diagnostics: &mut Vec<crate::diagnostics::Diagnostic>,
     ) {
-        let mut evaluate = |id: ExprId| {
-            evaluate_or_report(block, line, id, &self.state.variables, diagnostics)
+        let variables = &self.state.variables;
+        let evaluate = |id: ExprId, diagnostics: &mut Vec<crate::diagnostics::Diagnostic>| {
+            evaluate_or_report(block, line, id, variables, diagnostics)
                 .filter(|value| value.fract() == 0.0 && *value >= 0.0 && *value < 256.0)
                 .map(|value| value as u16)
         };
-        let group =
-            evaluate(group).filter(|group| (*group as usize) < crate::analysis::state::GROUP_COUNT);
+        let group = evaluate(group, diagnostics)
+            .filter(|group| (*group as usize) < crate::analysis::state::GROUP_COUNT);
+        // The value was evaluated, and its findings reported, with the assignment.
         let number = if self.flow_uncertain {
             None
         } else {
-            value.and_then(&mut evaluate)
+            value.and_then(|id| evaluate(id, &mut Vec::new()))
         };
         let Some(group) = group else {
             self.state.forget_inherited_groups();
