@@ -102,6 +102,8 @@ pub struct Engine<'a> {
     axis_names: Vec<Arc<str>>,
     /// The positions before the current block, kept in one buffer for all blocks.
     start_positions: Vec<Option<f64>>,
+    /// The circle of the block last applied, for its move.
+    last_arc: Option<crate::analysis::circle::Circle>,
     /// The geometry slot (X, Y, Z) of each configured axis, for frames.
     slots: crate::analysis::machine::AxisSlots,
     /// Per axis, how the current block wrote it: 0 not, 1 in workpiece coordinates, 2 as a machine
@@ -130,6 +132,57 @@ pub struct Engine<'a> {
     plane_axis_cache: [(Option<usize>, Option<usize>); 3],
 }
 
+/// What an [`Engine`] carries from one block to the next, detached from the configuration: a
+/// checkpoint from which the analysis of a document is replayed after an edit or for a hover. Two
+/// equal snapshots make every later block resolve the same way.
+#[derive(Debug, Clone, PartialEq)]
+pub struct EngineSnapshot {
+    state: ModalState,
+    flow_uncertain: bool,
+    missing_feed_reported: bool,
+    stale_offset_data: Option<u8>,
+    tangent: Option<(usize, (f64, f64))>,
+}
+
+/// How far an edit moved the positions of every axis, per kind of position (basic unit system): the
+/// workpiece set-points, the last programmed values and the machine set-points.
+#[derive(Debug, Clone, PartialEq)]
+pub struct PositionShift {
+    pub positions: Vec<f64>,
+    pub programmed: Vec<f64>,
+    pub machine: Vec<f64>,
+}
+
+impl EngineSnapshot {
+    /// Moves every known position by `shift`.
+    pub fn shift_positions(&mut self, shift: &PositionShift) {
+        add_to_known(&mut self.state.positions, &shift.positions);
+        add_to_known(&mut self.state.programmed, &shift.programmed);
+        add_to_known(&mut self.state.machine, &shift.machine);
+    }
+}
+
+fn add_to_known(values: &mut [Option<f64>], deltas: &[f64]) {
+    for (value, delta) in values.iter_mut().zip(deltas) {
+        if let Some(value) = value {
+            *value += delta;
+        }
+    }
+}
+
+/// `now - then` per axis where both are known, 0 where both are unknown; `None` when an axis is known
+/// in one and not the other.
+fn difference(now: &[Option<f64>], then: &[Option<f64>]) -> Option<Vec<f64>> {
+    now.iter()
+        .zip(then)
+        .map(|pair| match pair {
+            (Some(now), Some(then)) => Some(now - then),
+            (None, None) => Some(0.0),
+            _ => None,
+        })
+        .collect()
+}
+
 /// The non-modal G functions of one block that change what its axis words mean.
 #[derive(Default)]
 struct BlockFunctions {
@@ -152,6 +205,7 @@ impl<'a> Engine<'a> {
                 .map(|axis| Arc::from(axis.name.as_str()))
                 .collect(),
             start_positions: Vec::with_capacity(config.axes.len()),
+            last_arc: None,
             slots: crate::analysis::machine::AxisSlots::new(config),
             written: vec![0; config.axes.len()],
             stale_offset_data: None,
@@ -172,6 +226,83 @@ impl<'a> Engine<'a> {
                 };
                 (index(first), index(second))
             }),
+        }
+    }
+
+    /// The state between blocks, to continue from later with [`Engine::from_snapshot`].
+    pub fn snapshot(&self) -> EngineSnapshot {
+        EngineSnapshot {
+            state: self.state.clone(),
+            flow_uncertain: self.flow_uncertain,
+            missing_feed_reported: self.missing_feed_reported,
+            stale_offset_data: self.stale_offset_data,
+            tangent: self.tangent,
+        }
+    }
+
+    /// Whether the engine is in the state `snapshot` holds: then every later block resolves as it did
+    /// from there.
+    pub fn matches(&self, snapshot: &EngineSnapshot) -> bool {
+        self.flow_uncertain == snapshot.flow_uncertain
+            && self.missing_feed_reported == snapshot.missing_feed_reported
+            && self.stale_offset_data == snapshot.stale_offset_data
+            && self.tangent == snapshot.tangent
+            && self.state == snapshot.state
+    }
+
+    /// When the engine's state differs from `snapshot` only by known positions (the same axes known in
+    /// both), the difference of each kind of position per axis (engine minus snapshot, zero where
+    /// equal); `None` otherwise.
+    pub fn position_shift_from(&self, snapshot: &EngineSnapshot) -> Option<PositionShift> {
+        if self.flow_uncertain != snapshot.flow_uncertain
+            || self.missing_feed_reported != snapshot.missing_feed_reported
+            || self.stale_offset_data != snapshot.stale_offset_data
+            // The tangent is a direction: a shift of positions leaves it as it is.
+            || self.tangent != snapshot.tangent
+        {
+            return None;
+        }
+        let shift = PositionShift {
+            positions: difference(&self.state.positions, &snapshot.state.positions)?,
+            programmed: difference(&self.state.programmed, &snapshot.state.programmed)?,
+            machine: difference(&self.state.machine, &snapshot.state.machine)?,
+        };
+        let mut probe = snapshot.state.clone();
+        probe.positions.clone_from(&self.state.positions);
+        probe.programmed.clone_from(&self.state.programmed);
+        probe.machine.clone_from(&self.state.machine);
+        (probe == self.state).then_some(shift)
+    }
+
+    /// An engine that continues where `snapshot` was taken, on the same configuration.
+    pub fn from_snapshot(config: &'a MachineConfig, snapshot: EngineSnapshot) -> Engine<'a> {
+        // Every field is named (no `..`), so that a field added to the engine must be decided here:
+        // carried in the snapshot, or rebuilt from the configuration.
+        let Engine {
+            config,
+            state: _,
+            flow_uncertain: _,
+            missing_feed_reported: _,
+            axis_names,
+            start_positions,
+            last_arc,
+            slots,
+            written,
+            stale_offset_data: _,
+            tangent: _,
+        } = Engine::new(config);
+        Engine {
+            config,
+            state: snapshot.state,
+            flow_uncertain: snapshot.flow_uncertain,
+            missing_feed_reported: snapshot.missing_feed_reported,
+            axis_names,
+            start_positions,
+            last_arc,
+            slots,
+            written,
+            stale_offset_data: snapshot.stale_offset_data,
+            tangent: snapshot.tangent,
         }
     }
 
@@ -197,8 +328,17 @@ impl<'a> Engine<'a> {
         block: &Block,
         diagnostics: &mut Vec<Diagnostic>,
     ) -> Option<Move> {
+        self.step(line, block, diagnostics)
+            .then(|| self.describe_last_move(line_index, line, block))
+    }
+
+    /// Applies `block` like [`Engine::apply`] but only says whether it moved axes: building the move is
+    /// left to [`Engine::describe_last_move`], so that callers that need only diagnostics pay nothing
+    /// for it.
+    pub fn step(&mut self, line: &str, block: &Block, diagnostics: &mut Vec<Diagnostic>) -> bool {
+        self.last_arc = None;
         if block.is_header {
-            return None;
+            return false;
         }
         self.record_macro_definitions(line, block);
         if let Some((expanded, used_at)) = self.expand_macro(line, block) {
@@ -515,16 +655,8 @@ impl<'a> Engine<'a> {
             );
         }
         crate::analysis::machine::update_after_block(&mut self.state, &self.slots, &self.written);
-        let result = (moved && functions.frame_or_pole.is_none() && !functions.dwell).then(|| {
-            self.describe_move(
-                line_index,
-                line,
-                block,
-                &start_positions,
-                motion.clone(),
-                arc,
-            )
-        });
+        let result = moves_axes;
+        self.last_arc = arc;
         self.start_positions = start_positions;
         if forget_after {
             // The callee may have programmed a feed, so a later feed move without F is not reported.
@@ -1258,15 +1390,13 @@ impl<'a> Engine<'a> {
         ));
     }
 
-    fn describe_move(
-        &self,
-        line_index: usize,
-        line: &str,
-        block: &Block,
-        start_positions: &[Option<f64>],
-        motion: Cow<'static, str>,
-        arc: Option<crate::analysis::circle::Circle>,
-    ) -> Move {
+    /// The move of the block last applied with [`Engine::step`], which returned true for it.
+    pub fn describe_last_move(&self, line_index: usize, line: &str, block: &Block) -> Move {
+        let motion = self.state.groups[1]
+            .map(GCode::name)
+            .unwrap_or(Cow::Borrowed(""));
+        let start_positions = &self.start_positions;
+        let arc = self.last_arc;
         let shows_diameter = self.state.shows_diameter();
         // How the program shows a value; unknown for a transverse axis while the diameter mode is.
         let display = |index: usize, value: f64| -> Option<f64> {
@@ -1351,7 +1481,7 @@ fn evaluate_or_report(
 }
 
 /// The axis name of a word: the letter and its numeric extension (`X`, `X1`), or the whole name.
-fn axis_name(line: &str, word: &AddressWord) -> String {
+pub(crate) fn axis_name(line: &str, word: &AddressWord) -> String {
     let mut name = line[word.name.start()..word.name.end()].to_ascii_uppercase();
     if let Some(Extension::Number { value, .. }) = &word.extension {
         name.push_str(&value.to_string());

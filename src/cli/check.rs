@@ -90,8 +90,7 @@ pub(crate) fn run_check(
         let kind = crate::analysis::ProgramKind::from_extension(
             path.extension().and_then(|extension| extension.to_str()),
         );
-        let line_diagnostics =
-            crate::analysis::analyze_program(&source.text, &config, kind).diagnostics;
+        let line_diagnostics = crate::analysis::diagnose_program(&source.text, &config, kind);
         let lines = ProgramLines::new(&source.text);
         let path_text = path.display().to_string();
         for line_diagnostic in &line_diagnostics {

@@ -10,6 +10,7 @@ use crate::syntax::parser::MAX_DIAGNOSTICS_PER_LINE;
 const MAX_OPEN_STRUCTURES: usize = 256;
 
 /// An open structure: its keyword, line and span.
+#[derive(Debug, Clone, PartialEq)]
 struct Open {
     keyword: StructureKeyword,
     line: usize,
@@ -18,7 +19,7 @@ struct Open {
 }
 
 /// Follows the structure keywords of a program block by block.
-#[derive(Default)]
+#[derive(Debug, Clone, Default, PartialEq)]
 pub struct StructureChecker {
     open: Vec<Open>,
     /// Whether the nesting bound was reported already (once per program).
@@ -144,12 +145,22 @@ impl StructureChecker {
         }
     }
 
+    /// Lines were inserted or removed: structures opened at or after `from` move by `delta` lines.
+    pub fn shift_lines(&mut self, from: usize, delta: isize) {
+        for open in &mut self.open {
+            if open.line >= from {
+                open.line = open.line.saturating_add_signed(delta);
+            }
+        }
+    }
+
     fn innermost_note(&self) -> String {
         match self.open.last() {
+            // No line number: the message must stay true when lines are inserted above the opening
+            // keyword, so that an edited document keeps the findings of unchanged blocks.
             Some(open) => format!(
-                " (the innermost open structure is {} on line {}, closed by {})",
+                " (the innermost open structure is the {} above, closed by {})",
                 name(open.keyword),
-                open.line + 1,
                 closer(open.keyword).map(name).unwrap_or("?")
             ),
             None => String::new(),
