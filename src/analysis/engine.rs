@@ -115,10 +115,20 @@ pub struct Engine<'a> {
     /// The direction of the path at the end of the last move, in the plane (by index) it moved in,
     /// for CT; `None` when unknown.
     tangent: Option<(usize, (f64, f64))>,
-    /// Macros defined so far with `DEFINE name AS body`: upper-case name and body text.
-    macros: Vec<(String, String)>,
     /// How many macro expansions the current block is inside of.
     expansion_depth: u8,
+    /// What the engine remembers about the program beyond the modal state.
+    memory: ProgramMemory,
+    /// The configuration indexes of the first and second axis of G17, G18 and G19.
+    plane_axis_cache: [(Option<usize>, Option<usize>); 3],
+}
+
+/// What the engine remembers about the program beyond the modal state: its macros and what the
+/// findings of §9.2 need to know about earlier blocks.
+#[derive(Debug, Clone, Default, PartialEq)]
+struct ProgramMemory {
+    /// Macros defined so far with `DEFINE name AS body`: upper-case name and body text.
+    macros: Vec<(String, String)>,
     /// A pole or plane change since the last polar move: AP and RP must be written again.
     pole_changed: bool,
     /// Which unit functions the program has programmed: 1 for G70/G71, 2 for G700/G710.
@@ -128,8 +138,6 @@ pub struct Engine<'a> {
     /// The geometry slots (X, Y, Z) whose mapping a rotating, scaling or mirroring frame change has
     /// altered since the last move.
     rotated_slots: [bool; 3],
-    /// The configuration indexes of the first and second axis of G17, G18 and G19.
-    plane_axis_cache: [(Option<usize>, Option<usize>); 3],
 }
 
 /// What an [`Engine`] carries from one block to the next, detached from the configuration: a
@@ -142,6 +150,7 @@ pub struct EngineSnapshot {
     missing_feed_reported: bool,
     stale_offset_data: Option<u8>,
     tangent: Option<(usize, (f64, f64))>,
+    memory: ProgramMemory,
 }
 
 /// How far an edit moved the positions of every axis, per kind of position (basic unit system): the
@@ -210,13 +219,8 @@ impl<'a> Engine<'a> {
             written: vec![0; config.axes.len()],
             stale_offset_data: None,
             tangent: None,
-            macros: Vec::new(),
             expansion_depth: 0,
-            pole_changed: false,
-            unit_kinds_used: 0,
-            feed_programmed: false,
-            unit_mix_reported: false,
-            rotated_slots: [false; 3],
+            memory: ProgramMemory::default(),
             plane_axis_cache: crate::analysis::state::PLANE_AXES.map(|(first, second)| {
                 let index = |name: &str| {
                     config
@@ -237,6 +241,7 @@ impl<'a> Engine<'a> {
             missing_feed_reported: self.missing_feed_reported,
             stale_offset_data: self.stale_offset_data,
             tangent: self.tangent,
+            memory: self.memory.clone(),
         }
     }
 
@@ -247,6 +252,7 @@ impl<'a> Engine<'a> {
             && self.missing_feed_reported == snapshot.missing_feed_reported
             && self.stale_offset_data == snapshot.stale_offset_data
             && self.tangent == snapshot.tangent
+            && self.memory == snapshot.memory
             && self.state == snapshot.state
     }
 
@@ -259,6 +265,7 @@ impl<'a> Engine<'a> {
             || self.stale_offset_data != snapshot.stale_offset_data
             // The tangent is a direction: a shift of positions leaves it as it is.
             || self.tangent != snapshot.tangent
+            || self.memory != snapshot.memory
         {
             return None;
         }
@@ -290,6 +297,9 @@ impl<'a> Engine<'a> {
             written,
             stale_offset_data: _,
             tangent: _,
+            expansion_depth,
+            memory: _,
+            plane_axis_cache,
         } = Engine::new(config);
         Engine {
             config,
@@ -303,6 +313,9 @@ impl<'a> Engine<'a> {
             written,
             stale_offset_data: snapshot.stale_offset_data,
             tangent: snapshot.tangent,
+            expansion_depth,
+            memory: snapshot.memory,
+            plane_axis_cache,
         }
     }
 
@@ -342,7 +355,7 @@ impl<'a> Engine<'a> {
         }
         self.record_macro_definitions(line, block);
         if let Some((expanded, used_at)) = self.expand_macro(line, block) {
-            return self.apply_expanded(line_index, &expanded, used_at, diagnostics);
+            return self.step_expanded(&expanded, used_at, diagnostics);
         }
         let statements = block.interpreted_statements();
         // A label may be the target of a backward jump and a structure keyword opens a loop or branch:
@@ -537,7 +550,7 @@ impl<'a> Engine<'a> {
             // The stored AP and RP belong to the old plane (reference §5.2).
             self.state.polar_angle = None;
             self.state.polar_radius = None;
-            self.pole_changed = true;
+            self.memory.pole_changed = true;
         }
         let mut polar_circle_centre = None;
         if let Some(code) = functions.frame_or_pole {
@@ -547,7 +560,7 @@ impl<'a> Engine<'a> {
                 let frame_before = self.state.frame;
                 self.apply_frame_instruction(code, line, block, statements, diagnostics);
                 if let (Some(before), Some(after)) = (frame_before, self.state.frame) {
-                    for (slot, rotated) in self.rotated_slots.iter_mut().enumerate() {
+                    for (slot, rotated) in self.memory.rotated_slots.iter_mut().enumerate() {
                         *rotated |=
                             (0..3).any(|row| before.matrix[row][slot] != after.matrix[row][slot]);
                     }
@@ -1102,7 +1115,7 @@ impl<'a> Engine<'a> {
         self.state.polar_angle = None;
         // What a stored RP means for the new pole is not documented (reference §5.2 [?]).
         self.state.polar_radius = None;
-        self.pole_changed = true;
+        self.memory.pole_changed = true;
         let Some(plane) = self.state.plane_index() else {
             return;
         };

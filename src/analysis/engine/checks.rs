@@ -20,7 +20,7 @@ impl Engine<'_> {
         span: crate::diagnostics::Span,
         diagnostics: &mut Vec<Diagnostic>,
     ) {
-        let rotated = std::mem::take(&mut self.rotated_slots);
+        let rotated = std::mem::take(&mut self.memory.rotated_slots);
         if rotated == [false; 3] {
             return;
         }
@@ -76,11 +76,14 @@ impl Engine<'_> {
                 ));
             }
             let kind = if code.name().len() == 4 { 2 } else { 1 };
-            self.unit_kinds_used |= kind;
+            self.memory.unit_kinds_used |= kind;
         }
-        self.feed_programmed |= feed_written;
-        if self.unit_kinds_used == 3 && self.feed_programmed && !self.unit_mix_reported {
-            self.unit_mix_reported = true;
+        self.memory.feed_programmed |= feed_written;
+        if self.memory.unit_kinds_used == 3
+            && self.memory.feed_programmed
+            && !self.memory.unit_mix_reported
+        {
+            self.memory.unit_mix_reported = true;
             let feed_word = statements.iter().find_map(|statement| match statement {
                 Statement::Address(word) if word.kind == AddressKind::Feed => Some(word.span),
                 _ => None,
@@ -113,7 +116,7 @@ impl Engine<'_> {
                 ));
             }
         }
-        if std::mem::take(&mut self.pole_changed)
+        if std::mem::take(&mut self.memory.pole_changed)
             && (polar.angle.is_none() || polar.radius.is_none())
         {
             let missing = if polar.angle.is_none() { "AP" } else { "RP" };

@@ -21,8 +21,8 @@ impl Engine<'_> {
             {
                 let upper = line[name.start()..name.end()].to_ascii_uppercase();
                 let body = line[body.start()..body.end()].trim().to_string();
-                self.macros.retain(|(known, _)| *known != upper);
-                self.macros.push((upper, body));
+                self.memory.macros.retain(|(known, _)| *known != upper);
+                self.memory.macros.push((upper, body));
             }
         }
     }
@@ -30,7 +30,7 @@ impl Engine<'_> {
     /// The block's text with its first use of a known macro replaced by the macro's body, and the span
     /// of that use; `None` when the block uses no macro (or expansion is nested too deeply).
     pub(super) fn expand_macro(&self, line: &str, block: &Block) -> Option<(String, Span)> {
-        if self.macros.is_empty() || self.expansion_depth >= MAX_EXPANSION_DEPTH {
+        if self.memory.macros.is_empty() || self.expansion_depth >= MAX_EXPANSION_DEPTH {
             return None;
         }
         block
@@ -45,6 +45,7 @@ impl Engine<'_> {
                 } if args.is_empty() => {
                     let written = &line[name.start()..name.end()];
                     let (_, body) = self
+                        .memory
                         .macros
                         .iter()
                         .find(|(known, _)| known.eq_ignore_ascii_case(written))?;
@@ -59,15 +60,14 @@ impl Engine<'_> {
     /// Interprets the expanded block in place of the written one. Analysis findings of the expansion
     /// are placed on the macro's use. Syntax findings inside the body are not reported: a body is text
     /// until it is used, and its findings would have no place in the written line.
-    pub(super) fn apply_expanded(
+    pub(super) fn step_expanded(
         &mut self,
-        line_index: usize,
         expanded: &str,
         used_at: Span,
         diagnostics: &mut Vec<Diagnostic>,
-    ) -> Option<super::Move> {
+    ) -> bool {
         let mut context = crate::syntax::context::SyntaxContext::new(self.config);
-        for (name, _) in &self.macros {
+        for (name, _) in &self.memory.macros {
             context.add_macro(name);
         }
         let mut parser = crate::syntax::parser::LineParser::new();
@@ -76,12 +76,12 @@ impl Engine<'_> {
         parser.parse(expanded, &context, &mut block, &mut syntax_findings);
         let mut findings = Vec::new();
         self.expansion_depth += 1;
-        let result = self.apply(line_index, expanded, &block, &mut findings);
+        let moved = self.step(expanded, &block, &mut findings);
         self.expansion_depth -= 1;
         diagnostics.extend(findings.into_iter().map(|mut finding| {
             finding.span = used_at;
             finding
         }));
-        result
+        moved
     }
 }
