@@ -249,6 +249,7 @@ codes! {
     UnitsChangeInContour = "A221", Warning, "G70/G71/G700/G710 switches between inch and metric while tool radius compensation G41/G42 is active.";
     SuppressionWithoutAxes = "A222", Hint, "G53, G153 or SUPA in a block without axis values: they act only on the axes of their own block.";
     IncrementAfterOffsetChange = "A223", Hint, "A G91 move of an axis right after a settable offset or frame change: the change is traversed in addition (SD42440 = 1).";
+    AxisLeftOutAfterRotation = "A224", Information, "The first move after a frame change that rotates, scales or mirrors leaves out a geometry axis the change affects: it keeps its value in the new coordinates, so the move may move it too.";
 }
 
 impl fmt::Display for Code {

@@ -44,6 +44,17 @@ fn written_number(text: &str) -> (f64, usize) {
     (number, decimals)
 }
 
+/// `X10` is axis X with 10; an axis name with digits is written with `=`: `X1=10`, `X1=?`.
+fn split_axis_word(word: &str) -> (&str, &str) {
+    match word.split_once('=') {
+        Some(parts) => parts,
+        None => word.split_at(
+            word.find(|c: char| !c.is_ascii_alphabetic())
+                .unwrap_or(word.len()),
+        ),
+    }
+}
+
 fn parse_expectation(comment: &str) -> Expectation {
     let mut expectation = Expectation::default();
     let (moves_part, codes_part) = match comment.find("!!") {
@@ -75,19 +86,13 @@ fn parse_expectation(comment: &str) -> Expectation {
                 } else if let Some(value) = word.strip_prefix('R') {
                     arc.radius = Some(written_number(value));
                 } else {
-                    let (name, value) = word.split_at(
-                        word.find(|c: char| !c.is_ascii_alphabetic())
-                            .unwrap_or(word.len()),
-                    );
+                    let (name, value) = split_axis_word(word);
                     arc.centre
                         .push((name.to_string(), Some(written_number(value))));
                 }
                 continue;
             }
-            let (name, value) = word.split_at(
-                word.find(|c: char| !c.is_ascii_alphabetic())
-                    .unwrap_or(word.len()),
-            );
+            let (name, value) = split_axis_word(word);
             if name == "F" {
                 expectation.feed = Some(value.parse().expect("a number after F"));
             } else if value == "?" {

@@ -1,7 +1,7 @@
 //! Applies one parsed block to the modal state, the way the control's interpreter does, and describes
-//! the resulting move. What this engine does not model yet (settable offsets, spatial rotations, calls
-//! of subprograms, jumps) turns the affected values into "unknown" or
-//! "uncertain": it never shows a number it cannot stand behind.
+//! the resulting move. What this engine does not model (spatial rotations, basic frames, calls of
+//! subprograms, jumps) turns the affected values into "unknown" or "uncertain": it never shows a
+//! number it cannot stand behind.
 
 use crate::analysis::eval::{evaluate, EvalError, Variables};
 use crate::analysis::state::ModalState;
@@ -12,8 +12,10 @@ use crate::syntax::gcodes::GCode;
 use std::borrow::Cow;
 use std::sync::Arc;
 
+mod checks;
 mod circles;
 mod frame_variables;
+mod macros;
 
 /// A block that moves axes.
 #[derive(Debug, Clone, PartialEq)]
@@ -63,6 +65,8 @@ struct PolarWords {
     angle: Option<(Option<f64>, bool)>,
     radius: Option<Option<f64>>,
     span: Option<crate::diagnostics::Span>,
+    /// The span of an AP written without `=IC`/`=AC`.
+    plain_angle_span: Option<crate::diagnostics::Span>,
 }
 
 /// The circle words of one block: I, J, K (value, absolute) in the basic unit system, and CR.
@@ -111,6 +115,29 @@ pub struct Engine<'a> {
     /// The direction of the path at the end of the last move, in the plane (by index) it moved in,
     /// for CT; `None` when unknown.
     tangent: Option<(usize, (f64, f64))>,
+    /// How many macro expansions the current block is inside of.
+    expansion_depth: u8,
+    /// What the engine remembers about the program beyond the modal state.
+    memory: ProgramMemory,
+    /// The configuration indexes of the first and second axis of G17, G18 and G19.
+    plane_axis_cache: [(Option<usize>, Option<usize>); 3],
+}
+
+/// What the engine remembers about the program beyond the modal state: its macros and what the
+/// findings of §9.2 need to know about earlier blocks.
+#[derive(Debug, Clone, Default, PartialEq)]
+struct ProgramMemory {
+    /// Macros defined so far with `DEFINE name AS body`: upper-case name and body text.
+    macros: Vec<(String, String)>,
+    /// A pole or plane change since the last polar move: AP and RP must be written again.
+    pole_changed: bool,
+    /// Which unit functions the program has programmed: 1 for G70/G71, 2 for G700/G710.
+    unit_kinds_used: u8,
+    feed_programmed: bool,
+    unit_mix_reported: bool,
+    /// The geometry slots (X, Y, Z) whose mapping a rotating, scaling or mirroring frame change has
+    /// altered since the last move.
+    rotated_slots: [bool; 3],
 }
 
 /// What an [`Engine`] carries from one block to the next, detached from the configuration: a
@@ -123,6 +150,7 @@ pub struct EngineSnapshot {
     missing_feed_reported: bool,
     stale_offset_data: Option<u8>,
     tangent: Option<(usize, (f64, f64))>,
+    memory: ProgramMemory,
 }
 
 /// How far an edit moved the positions of every axis, per kind of position (basic unit system): the
@@ -191,6 +219,17 @@ impl<'a> Engine<'a> {
             written: vec![0; config.axes.len()],
             stale_offset_data: None,
             tangent: None,
+            expansion_depth: 0,
+            memory: ProgramMemory::default(),
+            plane_axis_cache: crate::analysis::state::PLANE_AXES.map(|(first, second)| {
+                let index = |name: &str| {
+                    config
+                        .axes
+                        .iter()
+                        .position(|axis| axis.name.eq_ignore_ascii_case(name))
+                };
+                (index(first), index(second))
+            }),
         }
     }
 
@@ -202,6 +241,7 @@ impl<'a> Engine<'a> {
             missing_feed_reported: self.missing_feed_reported,
             stale_offset_data: self.stale_offset_data,
             tangent: self.tangent,
+            memory: self.memory.clone(),
         }
     }
 
@@ -212,6 +252,7 @@ impl<'a> Engine<'a> {
             && self.missing_feed_reported == snapshot.missing_feed_reported
             && self.stale_offset_data == snapshot.stale_offset_data
             && self.tangent == snapshot.tangent
+            && self.memory == snapshot.memory
             && self.state == snapshot.state
     }
 
@@ -224,6 +265,7 @@ impl<'a> Engine<'a> {
             || self.stale_offset_data != snapshot.stale_offset_data
             // The tangent is a direction: a shift of positions leaves it as it is.
             || self.tangent != snapshot.tangent
+            || self.memory != snapshot.memory
         {
             return None;
         }
@@ -255,6 +297,9 @@ impl<'a> Engine<'a> {
             written,
             stale_offset_data: _,
             tangent: _,
+            expansion_depth,
+            memory: _,
+            plane_axis_cache,
         } = Engine::new(config);
         Engine {
             config,
@@ -268,6 +313,9 @@ impl<'a> Engine<'a> {
             written,
             stale_offset_data: snapshot.stale_offset_data,
             tangent: snapshot.tangent,
+            expansion_depth,
+            memory: snapshot.memory,
+            plane_axis_cache,
         }
     }
 
@@ -305,6 +353,10 @@ impl<'a> Engine<'a> {
         if block.is_header {
             return false;
         }
+        self.record_macro_definitions(line, block);
+        if let Some((expanded, used_at)) = self.expand_macro(line, block) {
+            return self.step_expanded(&expanded, used_at, diagnostics);
+        }
         let statements = block.interpreted_statements();
         // A label may be the target of a backward jump and a structure keyword opens a loop or branch:
         // from here on the control may run blocks again or skip them, so values assigned from here on
@@ -322,11 +374,16 @@ impl<'a> Engine<'a> {
         let mut functions = BlockFunctions::default();
         let mut forget_for_frames = false;
         let mut offset_selected = false;
+        let units_before = self.state.groups[13];
+        let mut unit_word = None;
         self.written.iter_mut().for_each(|kind| *kind = 0);
         for statement in statements {
-            if let Statement::GCode { code, .. } = statement {
+            if let Statement::GCode { code, span } = statement {
                 if code.is_modal() {
                     self.state.set_modal(*code);
+                    if code.group() == 13 {
+                        unit_word = Some((*code, *span));
+                    }
                     // Selecting a settable offset activates its stored data, also when the same
                     // function is programmed again (reference §7.4).
                     offset_selected |= code.group() == 8;
@@ -348,8 +405,7 @@ impl<'a> Engine<'a> {
         }
         if offset_selected {
             self.stale_offset_data = None;
-            self.state.offset = self.state.selected_offset(self.config);
-            crate::analysis::machine::reexpress(&mut self.state, &self.slots, false);
+            self.change_offset(self.state.selected_offset(self.config));
         }
         let mut start_positions = std::mem::take(&mut self.start_positions);
         start_positions.clear();
@@ -382,6 +438,9 @@ impl<'a> Engine<'a> {
                         let value = self.word_value(line, block, word, diagnostics);
                         polar.angle = Some((value, incremental));
                         polar.span = Some(word.span);
+                        if word.value.modifier.is_none() && functions.frame_or_pole.is_none() {
+                            polar.plain_angle_span = Some(word.span);
+                        }
                     }
                     AddressKind::Named(NamedAddress::PolarRadius) => {
                         let value = self.word_value(line, block, word, diagnostics);
@@ -480,21 +539,42 @@ impl<'a> Engine<'a> {
                 _ => {}
             }
         }
+        self.check_units(
+            units_before,
+            unit_word,
+            feed_in_block.is_some(),
+            statements,
+            diagnostics,
+        );
         if self.state.plane_index() != plane_before {
-            // The stored AP belongs to the old plane (reference §5.2).
+            // The stored AP and RP belong to the old plane (reference §5.2).
             self.state.polar_angle = None;
+            self.state.polar_radius = None;
+            self.memory.pole_changed = true;
         }
         let mut polar_circle_centre = None;
         if let Some(code) = functions.frame_or_pole {
             if matches!(code.name().as_ref(), "G110" | "G111" | "G112") {
                 self.define_pole(code, line, block, statements, &polar, diagnostics);
             } else {
+                let frame_before = self.state.frame;
                 self.apply_frame_instruction(code, line, block, statements, diagnostics);
+                if let (Some(before), Some(after)) = (frame_before, self.state.frame) {
+                    for (slot, rotated) in self.memory.rotated_slots.iter_mut().enumerate() {
+                        *rotated |=
+                            (0..3).any(|row| before.matrix[row][slot] != after.matrix[row][slot]);
+                    }
+                }
                 // A frame instruction moves nothing: the axes keep their machine set-points.
-                crate::analysis::machine::reexpress(&mut self.state, &self.slots, true);
+                crate::analysis::machine::reexpress(
+                    &mut self.state,
+                    &self.slots,
+                    crate::analysis::machine::Replaced::Frame(frame_before),
+                );
             }
         } else if polar.angle.is_some() || polar.radius.is_some() {
             moved = true;
+            self.check_polar_words(&polar, diagnostics);
             polar_circle_centre = self.apply_polar_move(line, statements, &polar, diagnostics);
         }
         if let Some(feed) = feed_in_block {
@@ -564,6 +644,9 @@ impl<'a> Engine<'a> {
                 format!("the data of {name} ($P_UIFR[{index}]) were changed while {name} was active; this move still uses the old data: program {name} again to activate them"),
             ));
         }
+        if moves_axes {
+            self.check_axes_after_rotation(circle_words.span.unwrap_or_default(), diagnostics);
+        }
         if functions.machine_coordinates && find_word(statements, AddressKind::Axis).is_none() {
             // G53/G153/SUPA are non-modal (reference §2.3, §9.2 #13).
             if let Some(span) = statements.iter().find_map(|statement| match statement {
@@ -577,11 +660,13 @@ impl<'a> Engine<'a> {
                 ));
             }
         }
-        crate::analysis::machine::store_machine_targets(
-            &mut self.state,
-            &self.slots,
-            &self.written,
-        );
+        if functions.machine_coordinates || functions.reference_point {
+            crate::analysis::machine::store_machine_targets(
+                &mut self.state,
+                &self.slots,
+                &self.written,
+            );
+        }
         crate::analysis::machine::update_after_block(&mut self.state, &self.slots, &self.written);
         let result = moves_axes;
         self.last_arc = arc;
@@ -863,9 +948,12 @@ impl<'a> Engine<'a> {
             // Working-area limits (G25/G26) do not move the coordinate system.
             return;
         }
-        let is_length = matches!(name, "TRANS" | "ATRANS");
+        let is_length = matches!(name, "TRANS" | "ATRANS" | "G58" | "G59");
         let mut values: [Option<Option<f64>>; 3] = [None; 3];
-        let mut followable = !matches!(name, "ROTS" | "AROTS" | "G58" | "G59");
+        // G58 and G59 replace the coarse and fine translation axially; without a fine translation
+        // (MD18600 = 0) they are not followed.
+        let mut followable = !matches!(name, "ROTS" | "AROTS")
+            && (self.config.frame_fine_trans || !matches!(name, "G58" | "G59"));
         let mut rotation_in_plane = None;
         for statement in statements {
             let Statement::Address(word) = statement else {
@@ -910,7 +998,7 @@ impl<'a> Engine<'a> {
             None
         } else {
             match name {
-                "TRANS" | "ATRANS" => Some(Frame::translation([
+                "TRANS" | "ATRANS" | "G58" | "G59" => Some(Frame::translation([
                     written(0, 0.0),
                     written(1, 0.0),
                     written(2, 0.0),
@@ -952,12 +1040,64 @@ impl<'a> Engine<'a> {
                 }))),
             }
         };
+        if self.config.frame_fine_trans {
+            let written = values.map(|value| value.is_some());
+            self.compose_with_fine_translation(name, element, written);
+            return;
+        }
         let absolute = matches!(name, "TRANS" | "ROT" | "SCALE" | "MIRROR");
         self.state.frame = match (absolute, element) {
             (_, None) => None,
             (true, Some(element)) => Some(element),
             (false, Some(element)) => self.state.frame.map(|frame| frame.then_inner(&element)),
         };
+    }
+
+    /// Frame composition with a fine translation (MD18600 = 1, reference §7.2): TRANS writes the
+    /// coarse part and keeps the fine one, ATRANS adds to the fine part, G58 and G59 replace the
+    /// coarse and the fine part of the written axes. Whether ROT, SCALE and MIRROR clear a fine part is
+    /// not documented: with one, the frame becomes unknown.
+    fn compose_with_fine_translation(
+        &mut self,
+        name: &str,
+        element: Option<crate::analysis::frame::Frame>,
+        written: [bool; 3],
+    ) {
+        use crate::analysis::frame::Frame;
+        let known = self.state.frame.zip(self.state.fine_translation);
+        let result = element.zip(known).and_then(|(element, (frame, fine))| {
+            let add =
+                |left: [f64; 3], right: [f64; 3]| [0, 1, 2].map(|axis| left[axis] + right[axis]);
+            match name {
+                "TRANS" => Some((Frame::translation(add(element.translation, fine)), fine)),
+                "ATRANS" => {
+                    let shift = [0, 1, 2].map(|row| {
+                        (0..3)
+                            .map(|column| frame.matrix[row][column] * element.translation[column])
+                            .sum::<f64>()
+                    });
+                    Some((frame.then_inner(&element), add(fine, shift)))
+                }
+                "G58" | "G59" => {
+                    let mut frame = frame;
+                    let mut fine = fine;
+                    for axis in (0..3).filter(|axis| written[*axis]) {
+                        let value = element.translation[axis];
+                        if name == "G58" {
+                            frame.translation[axis] = value + fine[axis];
+                        } else {
+                            frame.translation[axis] += value - fine[axis];
+                            fine[axis] = value;
+                        }
+                    }
+                    Some((frame, fine))
+                }
+                "ROT" | "SCALE" | "MIRROR" => (fine == [0.0; 3]).then_some((element, fine)),
+                _ => Some((frame.then_inner(&element), fine)),
+            }
+        });
+        self.state.frame = result.map(|(frame, _)| frame);
+        self.state.fine_translation = result.map(|(_, fine)| fine);
     }
 
     /// G110 (relative to the last programmed position), G111 (absolute), G112 (relative to the last
@@ -973,6 +1113,9 @@ impl<'a> Engine<'a> {
     ) {
         use crate::analysis::state::Pole;
         self.state.polar_angle = None;
+        // What a stored RP means for the new pole is not documented (reference §5.2 [?]).
+        self.state.polar_radius = None;
+        self.memory.pole_changed = true;
         let Some(plane) = self.state.plane_index() else {
             return;
         };
@@ -1170,8 +1313,8 @@ impl<'a> Engine<'a> {
 
     /// The configuration indexes of the plane's first and second axis (G17: X, Y; G18: Z, X; G19: Y, Z).
     fn plane_axes(&self) -> (Option<usize>, Option<usize>) {
-        match self.state.plane_axis_names() {
-            Some((first, second)) => (self.axis_index(first), self.axis_index(second)),
+        match self.state.plane_index() {
+            Some(plane) => self.plane_axis_cache[plane],
             // The plane is inherited from an unseen caller.
             None => (None, None),
         }

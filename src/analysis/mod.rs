@@ -3,10 +3,11 @@
 //!
 //! What is followed today: G groups, G90/G91 with `=AC`/`=IC`, inch/metric (G70/G71/G700/G710),
 //! diameter programming (DIAMOF/DIAMON/DIAM90 and DAC/DIC/RAC/RIC), R parameters and DEF variables,
-//! feed, circles by centre or radius, polar coordinates, the programmable frame for machine
-//! coordinates. What is not followed yet turns values into "unknown" (settable work offsets, spatial
-//! rotations, AR/CIP/CT circles, calls of subprograms and cycles, transformations) or "uncertain"
-//! (everything after a jump or control structure, because the engine evaluates in program order).
+//! feed, circles (I/J/K, CR, AR, CIP, CT, TURN), polar coordinates, macros of the program, and for
+//! machine coordinates the programmable frame, the configured settable offsets with `$P_UIFR` writes
+//! and G53/G153/SUPA. What is not followed turns values into "unknown" (spatial rotations, basic and
+//! system frames, calls of subprograms and cycles, transformations) or "uncertain" (everything after a
+//! jump or control structure, because the engine evaluates in program order).
 
 pub mod circle;
 pub mod document;

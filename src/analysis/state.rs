@@ -42,6 +42,9 @@ pub struct ModalState {
     /// The programmable frame; `None` when it cannot be followed (a frame instruction with unknown
     /// values, a spatial rotation, a transformation, a call).
     pub frame: Option<crate::analysis::frame::Frame>,
+    /// With MD18600 = 1, the fine part of the programmable translation (in the frame's parent
+    /// coordinates), which `frame` includes; `None` when unknown. Meaningful only while `frame` is known.
+    pub fine_translation: Option<[f64; 3]>,
     /// The polar pole of each plane (G17, G18, G19).
     pub poles: [Pole; 3],
     /// The stored polar angle AP in degrees (`None` after a pole or plane change, or when unknown).
@@ -119,6 +122,7 @@ impl ModalState {
             feed: None,
             variables: Variables::default(),
             frame: Some(crate::analysis::frame::Frame::IDENTITY),
+            fine_translation: Some([0.0; 3]),
             poles: [Pole::Undefined; 3],
             polar_angle: None,
             polar_radius: None,
@@ -246,9 +250,10 @@ impl ModalState {
             self.groups[group] = None;
         }
         self.poles = [Pole::Unknown; 3];
-        // The caller's frames are not known either.
+        // The caller's frames are not known either, nor whether it changed the stored offsets.
         self.frame = None;
         self.offset.iter_mut().for_each(|value| *value = None);
+        self.settable_data.forget_all();
     }
 
     /// The first and second axis of the active plane (see [`PLANE_AXES`]); `None` when inherited.

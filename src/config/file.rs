@@ -16,6 +16,7 @@
 //! max_block_length = 512        # longest block in characters, comment included, greater than 0
 //! r_parameters = 100            # MD28050: number of R parameters
 //! frame_offset_incr_prog = 1    # SD42440: 1 = G91 after an offset change also traverses the change, 0 = not
+//! mm_frame_fine_trans = 0       # MD18600: 1 = ATRANS and G59 write a fine translation kept by TRANS and G58
 //!
 //! [offsets]                     # settable work offsets G500, G54 ... G57, G505 ... G599 ($P_UIFR)
 //! G54 = { X = 100, Y = 50 }     # per axis in the basic system (degrees on rotary axes, radius on X of a lathe)
@@ -208,6 +209,7 @@ struct RawMachine {
     max_block_length: Option<i64>,
     r_parameters: Option<i64>,
     frame_offset_incr_prog: Option<i64>,
+    mm_frame_fine_trans: Option<i64>,
 }
 
 /// The `[check]` table.
@@ -370,6 +372,19 @@ impl RawConfig {
                     return Err(invalid(
                         &[key("machine"), key("frame_offset_incr_prog")],
                         format!("must be 0 or 1 (SD42440), found {value}"),
+                    ))
+                }
+            };
+        }
+
+        if let Some(value) = machine.mm_frame_fine_trans {
+            config.frame_fine_trans = match value {
+                0 => false,
+                1 => true,
+                _ => {
+                    return Err(invalid(
+                        &[key("machine"), key("mm_frame_fine_trans")],
+                        format!("must be 0 or 1 (MD18600), found {value}"),
                     ))
                 }
             };
@@ -955,10 +970,11 @@ extensions = ["MPF", "spf", "nc"]
     #[test]
     fn settable_offsets_and_sd42440_are_read() {
         let config = parse(
-            "[machine]\nframe_offset_incr_prog = 0\n[offsets]\nG54 = { x = 100, Y = 50.5 }\ng505 = { A = 90 }\nG500 = {}\n",
+            "[machine]\nframe_offset_incr_prog = 0\nmm_frame_fine_trans = 1\n[offsets]\nG54 = { x = 100, Y = 50.5 }\ng505 = { A = 90 }\nG500 = {}\n",
         )
         .unwrap();
         assert!(!config.frame_offset_incr_prog);
+        assert!(config.frame_fine_trans);
         assert_eq!(
             config.settable_offset(1),
             Some(&[("X".to_string(), 100.0), ("Y".to_string(), 50.5)][..])
@@ -990,6 +1006,8 @@ extensions = ["MPF", "spf", "nc"]
         assert!(error.message.contains("listed twice"), "{error}");
         let error = error_of("[machine]\nframe_offset_incr_prog = 2\n");
         assert_eq!(error.key.as_deref(), Some("machine.frame_offset_incr_prog"));
+        let error = error_of("[machine]\nmm_frame_fine_trans = -1\n");
+        assert_eq!(error.key.as_deref(), Some("machine.mm_frame_fine_trans"));
     }
 
     #[test]

@@ -85,6 +85,9 @@ pub struct MachineConfig {
     /// SD42440 `FRAME_OFFSET_INCR_PROG`: whether a G91 move after a frame or offset change also
     /// traverses the change (1, the default), or only the programmed path (0) (reference §3.6).
     pub frame_offset_incr_prog: bool,
+    /// MD18600 `MM_FRAME_FINE_TRANS`: whether the programmable translation has a fine part, which
+    /// ATRANS and G59 write while TRANS and G58 write the coarse part (reference §7.2).
+    pub frame_fine_trans: bool,
 }
 
 impl Default for MachineConfig {
@@ -117,6 +120,7 @@ impl MachineConfig {
             extensions: vec!["mpf".to_string(), "spf".to_string()],
             settable_offsets: BTreeMap::new(),
             frame_offset_incr_prog: true,
+            frame_fine_trans: false,
         }
     }
 

@@ -135,7 +135,10 @@ pub fn diagnostics_to_lsp<'a>(
         if current.as_ref().map(|(line_idx, _)| *line_idx) != Some(item.line) {
             current = Some((item.line, line_text(item.line)));
         }
-        let line = current.as_ref().map(|(_, text)| text.as_ref()).unwrap_or("");
+        let line = current
+            .as_ref()
+            .map(|(_, text)| text.as_ref())
+            .unwrap_or("");
         converted.push(diagnostic_to_lsp(item, line, encoding));
     }
     converted
@@ -159,7 +162,11 @@ pub fn diagnostic_to_lsp(
 }
 
 /// The edits of a diagnostic's fix, as LSP text edits on the diagnostic's line.
-pub fn fix_edits(item: &LineDiagnostic, line: &str, encoding: PositionEncoding) -> Vec<ls_types::TextEdit> {
+pub fn fix_edits(
+    item: &LineDiagnostic,
+    line: &str,
+    encoding: PositionEncoding,
+) -> Vec<ls_types::TextEdit> {
     item.diagnostic
         .fix
         .iter()
@@ -180,17 +187,28 @@ mod tests {
         let line = "; ä 😀 X1";
         let byte = line.find('X').unwrap();
         assert_eq!(byte_to_character(line, byte, PositionEncoding::Utf16), 7);
-        assert_eq!(byte_to_character(line, byte, PositionEncoding::Utf8), byte as u32);
+        assert_eq!(
+            byte_to_character(line, byte, PositionEncoding::Utf8),
+            byte as u32
+        );
         assert_eq!(character_to_byte(line, 7, PositionEncoding::Utf16), byte);
         // Inside the surrogate pair: the start of the emoji.
-        assert_eq!(character_to_byte(line, 5, PositionEncoding::Utf16), line.find('😀').unwrap());
-        assert_eq!(character_to_byte(line, 999, PositionEncoding::Utf16), line.len());
+        assert_eq!(
+            character_to_byte(line, 5, PositionEncoding::Utf16),
+            line.find('😀').unwrap()
+        );
+        assert_eq!(
+            character_to_byte(line, 999, PositionEncoding::Utf16),
+            line.len()
+        );
     }
 
     #[test]
     fn positions_clamp_to_the_line_and_the_document() {
         let rope = Rope::from_str("ab\r\ncd😀e\n");
-        let at = |line, character, encoding| position_to_char(&rope, Position::new(line, character), encoding);
+        let at = |line, character, encoding| {
+            position_to_char(&rope, Position::new(line, character), encoding)
+        };
         assert_eq!(at(0, 99, PositionEncoding::Utf16), 2);
         assert_eq!(at(1, 4, PositionEncoding::Utf16), 4 + 3);
         assert_eq!(at(1, 3, PositionEncoding::Utf16), 4 + 2);
@@ -204,6 +222,9 @@ mod tests {
     fn utf8_is_chosen_only_when_offered() {
         assert_eq!(PositionEncoding::negotiate(None), PositionEncoding::Utf16);
         let offered = [PositionEncodingKind::UTF16, PositionEncodingKind::UTF8];
-        assert_eq!(PositionEncoding::negotiate(Some(&offered)), PositionEncoding::Utf8);
+        assert_eq!(
+            PositionEncoding::negotiate(Some(&offered)),
+            PositionEncoding::Utf8
+        );
     }
 }

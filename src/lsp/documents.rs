@@ -23,7 +23,9 @@ use tower_lsp_server::ls_types::{TextDocumentContentChangeEvent, Uri};
 /// Locks a mutex, also after a panic elsewhere poisoned it: the data behind our locks stays
 /// consistent at every unlock, and the server must keep serving.
 pub fn lock<T>(mutex: &Mutex<T>) -> MutexGuard<'_, T> {
-    mutex.lock().unwrap_or_else(|poisoned| poisoned.into_inner())
+    mutex
+        .lock()
+        .unwrap_or_else(|poisoned| poisoned.into_inner())
 }
 
 /// What changed since the analysis last looked at the text.
@@ -199,7 +201,8 @@ impl OpenDocument {
         let updated = match (slot.as_mut(), pending) {
             (Some(analysed), Pending::Lines(change)) if Arc::ptr_eq(&analysed.config, &config) => {
                 let source = RopeLines::new(&rope);
-                let line_change = change.to_core(core_line_count(&analysed.rope), source.line_count());
+                let line_change =
+                    change.to_core(core_line_count(&analysed.rope), source.line_count());
                 analysed.analysis.update(
                     &source,
                     line_change.first,
@@ -245,7 +248,11 @@ impl OpenDocument {
                     (analysed.revision, analysed.version, diagnostics)
                 })
             }));
-            log::slow("analysis and diagnostics", started.elapsed(), &context.outgoing);
+            log::slow(
+                "analysis and diagnostics",
+                started.elapsed(),
+                &context.outgoing,
+            );
             match result {
                 Ok(Some((revision, version, diagnostics))) => {
                     let mut text = lock(&self.text);

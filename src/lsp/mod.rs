@@ -48,7 +48,10 @@ where
 
 /// Runs the server on the process's stdin and stdout; returns the exit code.
 pub fn serve_stdio() -> u8 {
-    let runtime = match tokio::runtime::Builder::new_multi_thread().enable_all().build() {
+    let runtime = match tokio::runtime::Builder::new_multi_thread()
+        .enable_all()
+        .build()
+    {
         Ok(runtime) => runtime,
         Err(error) => {
             eprintln!("sinumerik-lsp: cannot start the language server: {error}");

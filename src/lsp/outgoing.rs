@@ -2,9 +2,9 @@
 //! the analysis workers, log lines), sent in order by one task.
 
 use crate::lsp::log;
+use tokio::sync::mpsc;
 use tower_lsp_server::ls_types::{Diagnostic, MessageType, Uri};
 use tower_lsp_server::Client;
-use tokio::sync::mpsc;
 
 pub enum Outgoing {
     Diagnostics {

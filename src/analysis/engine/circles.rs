@@ -52,13 +52,16 @@ impl Engine<'_> {
         let end = (self.state.positions[first]?, self.state.positions[second]?);
         let error_const = self.config.circle_error_const;
         let error_factor = self.config.circle_error_factor;
-        let result = if let Some(radius) = words.radius {
-            circle::from_radius(start, end, radius, clockwise, error_const, error_factor)
-        } else {
-            let centre = self.programmed_centre(first, second, start, words);
-            let result =
-                circle::from_centre(start, end, centre, clockwise, error_const, error_factor);
-            if result.is_err() {
+        if let Some(radius) = words.radius {
+            return circle::from_radius(start, end, radius, clockwise, error_const, error_factor)
+                .map_err(|error| report_circle_error(error, span, diagnostics))
+                .ok();
+        }
+        let centre = self.programmed_centre(first, second, start, words);
+        match circle::from_centre(start, end, centre, clockwise, error_const, error_factor) {
+            Ok(circle) => Some(circle),
+            Err(error) => {
+                report_circle_error(error, span, diagnostics);
                 self.check_centre_looks_absolute(
                     first,
                     second,
@@ -68,12 +71,9 @@ impl Engine<'_> {
                     words,
                     diagnostics,
                 );
+                None
             }
-            result
-        };
-        result
-            .map_err(|error| report_circle_error(error, span, diagnostics))
-            .ok()
+        }
     }
 
     /// The centre from I/J/K: incremental from the start unless `=AC`; a left-out parameter is 0
@@ -293,11 +293,11 @@ impl Engine<'_> {
         start_positions: &[Option<f64>],
         arc: Option<&Circle>,
     ) {
-        let (Some(first), Some(second), Some(plane)) = (
-            self.plane_axes().0,
-            self.plane_axes().1,
-            self.state.plane_index(),
-        ) else {
+        let Some(plane) = self.state.plane_index() else {
+            self.tangent = None;
+            return;
+        };
+        let (Some(first), Some(second)) = self.plane_axis_cache[plane] else {
             self.tangent = None;
             return;
         };
@@ -307,7 +307,8 @@ impl Engine<'_> {
             (Some(arc), _, Some(end)) => Some((plane, circle::end_tangent(arc, end))),
             (None, Some(start), Some(end)) if matches!(motion, "G0" | "G1") => {
                 let direction = (end.0 - start.0, end.1 - start.1);
-                (direction.0.hypot(direction.1) > 1e-9).then_some((plane, direction))
+                (direction.0 * direction.0 + direction.1 * direction.1 > 1e-18)
+                    .then_some((plane, direction))
             }
             _ => None,
         };

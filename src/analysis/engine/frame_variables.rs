@@ -11,6 +11,26 @@ use crate::syntax::ast::{Block, ExprId, ExprKind};
 use crate::syntax::gcodes::GCode;
 
 impl Engine<'_> {
+    /// The active settable offset becomes `offset`; the axes keep their machine set-points.
+    pub(super) fn change_offset(&mut self, offset: Vec<Option<f64>>) {
+        let before = std::mem::replace(&mut self.state.offset, offset);
+        machine::reexpress(
+            &mut self.state,
+            &self.slots,
+            machine::Replaced::Offset(before),
+        );
+    }
+
+    /// The programmable frame becomes `frame`; the axes keep their machine set-points.
+    pub(super) fn change_frame(&mut self, frame: Option<crate::analysis::frame::Frame>) {
+        let before = std::mem::replace(&mut self.state.frame, frame);
+        machine::reexpress(
+            &mut self.state,
+            &self.slots,
+            machine::Replaced::Frame(before),
+        );
+    }
+
     /// An assignment to a system variable: only frame variables matter to the modal state.
     pub(super) fn apply_system_variable_write(
         &mut self,
@@ -32,18 +52,13 @@ impl Engine<'_> {
             "$P_UIFR" => self.write_settable_data(line, block, indexes, value, diagnostics),
             "$P_IFRAME" => {
                 // The active settable frame changes at once to a value that is not followed.
-                self.state.offset.iter_mut().for_each(|value| *value = None);
-                machine::reexpress(&mut self.state, &self.slots, false);
+                self.change_offset(vec![None; self.config.axes.len()]);
             }
-            "$P_PFRAME" => {
-                self.state.frame = None;
-                machine::reexpress(&mut self.state, &self.slots, true);
-            }
+            "$P_PFRAME" => self.change_frame(None),
             _ if name.starts_with("$P_") && (name.ends_with("FRAME") || name.ends_with("FR")) => {
                 // A basic or system frame: assumed identity, now unknown, and with it every offset.
                 self.state.settable_data.forget_all();
-                self.state.offset.iter_mut().for_each(|value| *value = None);
-                machine::reexpress(&mut self.state, &self.slots, false);
+                self.change_offset(vec![None; self.config.axes.len()]);
             }
             _ => {}
         }
@@ -73,6 +88,9 @@ impl Engine<'_> {
             return;
         };
         let axis_count = self.config.axes.len();
+        // The assignment's value was evaluated (and its findings reported) already; evaluating its
+        // parts again must not report them twice.
+        let diagnostics = &mut Vec::new();
         let values = if self.flow_uncertain {
             // The write may run any number of times, or not at all.
             None
@@ -178,17 +196,19 @@ impl Engine<'_> {
         value: Option<ExprId>,
         diagnostics: &mut Vec<crate::diagnostics::Diagnostic>,
     ) {
-        let mut evaluate = |id: ExprId| {
-            evaluate_or_report(block, line, id, &self.state.variables, diagnostics)
+        let variables = &self.state.variables;
+        let evaluate = |id: ExprId, diagnostics: &mut Vec<crate::diagnostics::Diagnostic>| {
+            evaluate_or_report(block, line, id, variables, diagnostics)
                 .filter(|value| value.fract() == 0.0 && *value >= 0.0 && *value < 256.0)
                 .map(|value| value as u16)
         };
-        let group =
-            evaluate(group).filter(|group| (*group as usize) < crate::analysis::state::GROUP_COUNT);
+        let group = evaluate(group, diagnostics)
+            .filter(|group| (*group as usize) < crate::analysis::state::GROUP_COUNT);
+        // The value was evaluated, and its findings reported, with the assignment.
         let number = if self.flow_uncertain {
             None
         } else {
-            value.and_then(&mut evaluate)
+            value.and_then(|id| evaluate(id, &mut Vec::new()))
         };
         let Some(group) = group else {
             self.state.forget_inherited_groups();
@@ -208,8 +228,7 @@ impl Engine<'_> {
         });
         self.state.groups[group as usize] = code;
         if group == 8 {
-            self.state.offset = self.state.selected_offset(self.config);
-            machine::reexpress(&mut self.state, &self.slots, false);
+            self.change_offset(self.state.selected_offset(self.config));
         }
     }
 }
