@@ -697,8 +697,8 @@ impl<'a> Engine<'a> {
         functions: &BlockFunctions,
         diagnostics: &mut Vec<Diagnostic>,
     ) -> bool {
-        let name = axis_name(line, word);
-        let Some(index) = self.axis_index(&name) else {
+        let name = AxisName(line, word);
+        let Some(index) = configured_axis_index(self.config, line, word) else {
             // Not a configured axis: the syntax layer reported it; nothing to track.
             return true;
         };
@@ -1148,8 +1148,7 @@ impl<'a> Engine<'a> {
                 if word.kind != AddressKind::Axis {
                     continue;
                 }
-                let name = axis_name(line, word);
-                let Some(index) = self.axis_index(&name) else {
+                let Some(index) = configured_axis_index(self.config, line, word) else {
                     continue;
                 };
                 let slot = if Some(index) == first {
@@ -1213,8 +1212,7 @@ impl<'a> Engine<'a> {
         // Only the axis perpendicular to the plane may join AP/RP (reference §5.3, T97).
         let plane_axis_written = statements.iter().any(|statement| {
             matches!(statement, Statement::Address(word) if word.kind == AddressKind::Axis && {
-                let name = axis_name(line, word);
-                plane_axes.iter().any(|index| self.config.axes[*index].name.eq_ignore_ascii_case(&name))
+                configured_axis_index(self.config, line, word).is_some_and(|index| plane_axes.contains(&index))
             })
         });
         if plane_axis_written {
@@ -1495,11 +1493,60 @@ fn evaluate_or_report(
 
 /// The axis name of a word: the letter and its numeric extension (`X`, `X1`), or the whole name.
 pub(crate) fn axis_name(line: &str, word: &AddressWord) -> String {
-    let mut name = line[word.name.start()..word.name.end()].to_ascii_uppercase();
-    if let Some(Extension::Number { value, .. }) = &word.extension {
-        name.push_str(&value.to_string());
+    AxisName(line, word).to_string()
+}
+
+/// The axis name of a word, written only when a message needs it: most words never do, and building a
+/// string per word cost an allocation per axis word of every block.
+pub(crate) struct AxisName<'a>(pub &'a str, pub &'a AddressWord);
+
+impl std::fmt::Display for AxisName<'_> {
+    fn fmt(&self, formatter: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let AxisName(line, word) = self;
+        for character in line[word.name.start()..word.name.end()].chars() {
+            write!(formatter, "{}", character.to_ascii_uppercase())?;
+        }
+        if let Some(Extension::Number { value, .. }) = &word.extension {
+            write!(formatter, "{value}")?;
+        }
+        Ok(())
     }
-    name
+}
+
+/// The configuration index of the axis a word names, compared without building its name.
+pub(crate) fn configured_axis_index(
+    config: &MachineConfig,
+    line: &str,
+    word: &AddressWord,
+) -> Option<usize> {
+    let letters = line
+        .as_bytes()
+        .get(word.name.start()..word.name.end())
+        .unwrap_or_default();
+    let mut digits_buffer = [0u8; 10];
+    let digits: &[u8] = match &word.extension {
+        Some(Extension::Number { value, .. }) => {
+            // The decimal digits of the extension, as `to_string` writes them.
+            let mut remaining = *value;
+            let mut start = digits_buffer.len();
+            loop {
+                start -= 1;
+                digits_buffer[start] = b'0' + (remaining % 10) as u8;
+                remaining /= 10;
+                if remaining == 0 {
+                    break;
+                }
+            }
+            &digits_buffer[start..]
+        }
+        _ => &[],
+    };
+    config.axes.iter().position(|axis| {
+        let name = axis.name.as_bytes();
+        name.len() == letters.len() + digits.len()
+            && name[..letters.len()].eq_ignore_ascii_case(letters)
+            && &name[letters.len()..] == digits
+    })
 }
 
 fn find_word(statements: &[Statement], kind: AddressKind) -> Option<&AddressWord> {

@@ -36,11 +36,8 @@ pub fn position_reads(config: &MachineConfig, line: &str, block: &Block, after: 
             }
             Statement::Address(word) => match word.kind {
                 AddressKind::Axis => {
-                    let name = crate::analysis::engine::axis_name(line, word);
-                    let Some(index) = config
-                        .axes
-                        .iter()
-                        .position(|axis| axis.name.eq_ignore_ascii_case(&name))
+                    let Some(index) =
+                        crate::analysis::engine::configured_axis_index(config, line, word)
                     else {
                         continue;
                     };
