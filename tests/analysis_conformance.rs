@@ -15,7 +15,8 @@ struct Expectation {
     /// The same for machine coordinates, written after `MCS`.
     machine: Vec<(String, Option<(f64, usize)>)>,
     feed: Option<f64>,
-    /// After `ARC`: the centre per axis, the radius (`R10`), the direction (`CW`, `CCW`) and the
+    /// After `ARC`: the centre per axis, the radius (`R10`), the direction (`CW`, `CCW`; in machine
+    /// coordinates `MCSCW`, `MCSCCW`) and the
     /// sweep in degrees (`SWEEP90`).
     arc: Option<ArcExpectation>,
     /// Whether the block has a `=>` part (and so must move).
@@ -30,6 +31,8 @@ struct ArcExpectation {
     centre: Vec<(String, Option<(f64, usize)>)>,
     radius: Option<(f64, usize)>,
     clockwise: Option<bool>,
+    /// `MCSCW` or `MCSCCW`: the direction after the programmable frame.
+    machine_clockwise: Option<bool>,
     sweep: Option<(f64, usize)>,
 }
 
@@ -81,6 +84,8 @@ fn parse_expectation(comment: &str) -> Expectation {
             if let Some(arc) = expectation.arc.as_mut() {
                 if word == "CW" || word == "CCW" {
                     arc.clockwise = Some(word == "CW");
+                } else if word == "MCSCW" || word == "MCSCCW" {
+                    arc.machine_clockwise = Some(word == "MCSCW");
                 } else if let Some(value) = word.strip_prefix("SWEEP") {
                     arc.sweep = Some(written_number(value));
                 } else if let Some(value) = word.strip_prefix('R') {
@@ -307,6 +312,15 @@ fn compare_move(
                     }
                 }
                 if expected
+                    .machine_clockwise
+                    .is_some_and(|clockwise| Some(clockwise) != arc.machine_clockwise)
+                {
+                    failures.push(format!(
+                        "{at}: machine arc direction expected {:?}, got {:?}",
+                        expected.machine_clockwise, arc.machine_clockwise
+                    ));
+                }
+                if expected
                     .clockwise
                     .is_some_and(|clockwise| clockwise != arc.clockwise)
                 {
@@ -371,13 +385,17 @@ fn the_harness_notices_a_wrong_expectation() {
     let path = folder.join("WRONG.MPF");
     std::fs::write(
         &path,
-        "; toml: [offsets]\n; toml: G54 = { X = 100 }\nN10 G0 X10 ; => X11\nN20 G91 Y5 ; => Y5\nN30 G90 G54 X0 ; => none\nN40 X1 ; => MCS X1\nN50 G0 Y0\nN60 G2 X21 I10 J0 F100 ; => ARC X12 R10 CCW\n",
+        "; toml: [offsets]\n; toml: G54 = { X = 100 }\nN10 G0 X10 ; => X11\nN20 G91 Y5 ; => Y5\nN30 G90 G54 X0 ; => none\nN40 X1 ; => MCS X1\nN50 G0 Y0\nN60 G2 X21 I10 J0 F100 ; => ARC X12 R10 CCW\nN70 MIRROR X0\nN80 G2 X-1 I10 J0 ; => ARC R10 CW MCSCW\n",
     )
     .unwrap();
     let failures = check_fixture(&path);
     std::fs::remove_dir_all(&folder).unwrap();
-    assert_eq!(failures.len(), 7, "{failures:?}");
+    assert_eq!(failures.len(), 8, "{failures:?}");
     assert!(failures[5].contains("arc centre X"), "{failures:?}");
     assert!(failures[6].contains("arc direction"), "{failures:?}");
+    assert!(
+        failures[7].contains("machine arc direction"),
+        "{failures:?}"
+    );
     assert!(failures[0].contains("X expected 11"), "{failures:?}");
 }

@@ -55,6 +55,9 @@ pub struct ArcMove {
     /// The radius in the basic unit system.
     pub radius: f64,
     pub clockwise: bool,
+    /// The direction the machine turns, after the programmable frame: a mirror in the plane turns a
+    /// clockwise arc counter-clockwise (reference §7.2, T49). `None` when the frame is unknown.
+    pub machine_clockwise: Option<bool>,
     /// The swept angle in degrees.
     pub sweep: f64,
 }
@@ -1309,6 +1312,33 @@ impl<'a> Engine<'a> {
             .collect()
     }
 
+    /// The turning direction in the machine of an arc programmed `clockwise` in the active plane: the
+    /// frame's map of the plane reverses it when its determinant is negative (an odd number of
+    /// mirrors). `None` when the frame or the plane is unknown, or the frame tilts the plane.
+    fn machine_clockwise(&self, clockwise: bool) -> Option<bool> {
+        let frame = self.state.frame?;
+        let (first, second) = match self.state.plane_index()? {
+            0 => (0, 1),
+            1 => (2, 0),
+            _ => (1, 2),
+        };
+        let normal = 3 - first - second;
+        let tilted = frame.matrix[normal][first] != 0.0
+            || frame.matrix[normal][second] != 0.0
+            || frame.matrix[first][normal] != 0.0
+            || frame.matrix[second][normal] != 0.0;
+        if tilted {
+            return None;
+        }
+        let determinant = frame.matrix[first][first] * frame.matrix[second][second]
+            - frame.matrix[first][second] * frame.matrix[second][first];
+        Some(if determinant < 0.0 {
+            !clockwise
+        } else {
+            clockwise
+        })
+    }
+
     /// The configuration indexes of the plane's first and second axis (G17: X, Y; G18: Z, X; G19: Y, Z).
     fn plane_axes(&self) -> (Option<usize>, Option<usize>) {
         match self.state.plane_index() {
@@ -1452,6 +1482,7 @@ impl<'a> Engine<'a> {
                 centre,
                 radius: circle.radius,
                 clockwise: circle.clockwise,
+                machine_clockwise: self.machine_clockwise(circle.clockwise),
                 sweep: circle.sweep,
             }
         });
