@@ -10,12 +10,14 @@
 //! - `words.rs`: where the words of a block are, for the cursor; `gcode_help.rs`: G-function texts.
 //! - `settings.rs`: settings and each document's machine configuration; `ext.rs`: own protocol types.
 //! - `outgoing.rs`, `log.rs`: ordered messages to the client, logging, slow-handler reports.
+//! - `framing.rs`: drops malformed messages before they reach the framework's reader.
 
 mod code_action;
 mod convert;
 mod documents;
 mod endpoint_preview;
 mod ext;
+mod framing;
 mod gcode_help;
 mod hover;
 mod inlay;
@@ -37,9 +39,10 @@ use tower_lsp_server::{LspService, Server};
 /// Serves the protocol on `input` and `output` until the client sends `exit` or closes the input.
 pub async fn serve<I, O>(input: I, output: O)
 where
-    I: AsyncRead + Unpin,
+    I: AsyncRead + Unpin + Send + 'static,
     O: AsyncWrite,
 {
+    let input = framing::guard_input(input);
     let (service, socket) = LspService::build(server::Backend::new)
         .custom_method(ext::DOCUMENT_TEXT_REQUEST, server::Backend::document_text)
         .finish();

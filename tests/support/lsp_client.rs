@@ -308,3 +308,81 @@ pub fn position_of(text: &str, needle: &str) -> (u32, u32) {
     let line = before.matches('\n').count() + before.matches('\r').count() - before.matches("\r\n").count();
     (line as u32, before[line_start..].encode_utf16().count() as u32)
 }
+
+/// The byte offset of an LSP position (UTF-16 columns) in `text`, clamped as the protocol's
+/// servers clamp: past the end of a line is its end, past the last line is the end of the text,
+/// inside a surrogate pair is the start of the character. Lines end at LF, CRLF or CR.
+pub fn byte_offset(text: &str, line: u32, character: u32) -> usize {
+    let bytes = text.as_bytes();
+    let mut line_start = 0;
+    for _ in 0..line {
+        match bytes[line_start..].iter().position(|&byte| byte == b'\n' || byte == b'\r') {
+            Some(offset) => {
+                let terminator = line_start + offset;
+                line_start = terminator + if bytes[terminator] == b'\r' && bytes.get(terminator + 1) == Some(&b'\n') { 2 } else { 1 };
+            }
+            None => return text.len(),
+        }
+    }
+    let line_end = bytes[line_start..]
+        .iter()
+        .position(|&byte| byte == b'\n' || byte == b'\r')
+        .map_or(text.len(), |offset| line_start + offset);
+    let mut units = 0;
+    for (offset, ch) in text[line_start..line_end].char_indices() {
+        let next = units + ch.len_utf16() as u32;
+        if next > character {
+            return line_start + offset;
+        }
+        units = next;
+    }
+    line_end
+}
+
+/// Applies one LSP edit to `text` the way the protocol defines it.
+pub fn apply_edit(text: &mut String, start: (u32, u32), end: (u32, u32), new_text: &str) {
+    let start = byte_offset(text, start.0, start.1);
+    let end = byte_offset(text, end.0, end.1).max(start);
+    text.replace_range(start..end, new_text);
+}
+
+/// A small deterministic pseudo-random generator (xorshift64*), so failures repeat.
+pub struct Random(u64);
+
+impl Random {
+    pub fn new(seed: u64) -> Random {
+        Random(seed.max(1))
+    }
+
+    pub fn next(&mut self) -> u64 {
+        self.0 ^= self.0 >> 12;
+        self.0 ^= self.0 << 25;
+        self.0 ^= self.0 >> 27;
+        self.0.wrapping_mul(0x2545_F491_4F6C_DD1D)
+    }
+
+    /// A number in `0..bound` (0 when `bound` is 0).
+    pub fn below(&mut self, bound: usize) -> usize {
+        if bound == 0 {
+            0
+        } else {
+            (self.next() % bound as u64) as usize
+        }
+    }
+
+    pub fn pick<'a>(&mut self, items: &[&'a str]) -> &'a str {
+        items[self.below(items.len())]
+    }
+}
+
+/// The number of LSP lines of a text (at least one).
+pub fn lsp_line_count(text: &str) -> usize {
+    1 + text.matches('\n').count() + text.matches('\r').count() - text.matches("\r\n").count()
+}
+
+/// The UTF-16 length of LSP line `line` of `text`.
+pub fn lsp_line_length(text: &str, line: u32) -> u32 {
+    let start = byte_offset(text, line, 0);
+    let end = byte_offset(text, line, u32::MAX);
+    text[start..end].encode_utf16().count() as u32
+}
