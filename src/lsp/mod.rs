@@ -61,5 +61,10 @@ pub fn serve_stdio() -> u8 {
     runtime.block_on(serve(tokio::io::stdin(), tokio::io::stdout()));
     // Analyses still running in the blocking pool are not waited for: the client has gone.
     runtime.shutdown_timeout(std::time::Duration::from_millis(100));
-    0
+    // The protocol's exit code: 0 after `shutdown`, 1 when the client left without it.
+    if server::SHUTDOWN_REQUESTED.load(std::sync::atomic::Ordering::SeqCst) {
+        0
+    } else {
+        1
+    }
 }

@@ -29,6 +29,10 @@ use tower_lsp_server::{Client, LanguageServer};
 /// How long the server waits for the client's answer to `workspace/configuration`.
 const CONFIGURATION_TIMEOUT: Duration = Duration::from_secs(10);
 
+/// Set by `shutdown`: the process's exit code depends on it (the protocol asks for 1 when the client
+/// exits without shutting the server down first). One server runs per process.
+pub static SHUTDOWN_REQUESTED: std::sync::atomic::AtomicBool = std::sync::atomic::AtomicBool::new(false);
+
 /// What the client told at initialize.
 #[derive(Debug, Clone, Default)]
 struct ClientInfo {
@@ -313,6 +317,7 @@ impl LanguageServer for Backend {
     }
 
     async fn shutdown(&self) -> Result<()> {
+        SHUTDOWN_REQUESTED.store(true, std::sync::atomic::Ordering::SeqCst);
         Ok(())
     }
 

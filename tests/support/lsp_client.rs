@@ -271,6 +271,15 @@ impl TestClient {
     }
 }
 
+impl TestClient {
+    /// Waits for the binary to end (after `exit`) and returns its exit code.
+    pub async fn wait_for_exit(mut self) -> Option<i32> {
+        let mut child = self.child.take()?;
+        let status = tokio::time::timeout(TIMEOUT, child.wait()).await.expect("the binary exits").unwrap();
+        status.code()
+    }
+}
+
 fn is_response(message: &Value, id: i64) -> bool {
     message.get("method").is_none() && message["id"] == id
 }
