@@ -9,7 +9,8 @@
 //! - `hover.rs`, `inlay.rs`, `code_action.rs`, `endpoint_preview.rs`: one feature each.
 //! - `words.rs`: where the words of a block are, for the cursor; `gcode_help.rs`: G-function texts.
 //! - `settings.rs`: settings and each document's machine configuration; `ext.rs`: own protocol types.
-//! - `outgoing.rs`, `log.rs`: ordered messages to the client, logging, slow-handler reports.
+//! - `outgoing.rs`: all output; the server's own notifications serialized straight to text.
+//! - `log.rs`: logging and slow-handler reports.
 //! - `framing.rs`: drops malformed messages before they reach the framework's reader.
 
 mod code_action;
@@ -40,13 +41,15 @@ use tower_lsp_server::{LspService, Server};
 pub async fn serve<I, O>(input: I, output: O)
 where
     I: AsyncRead + Unpin + Send + 'static,
-    O: AsyncWrite,
+    O: AsyncWrite + Unpin + Send + 'static,
 {
     let input = framing::guard_input(input);
-    let (service, socket) = LspService::build(server::Backend::new)
+    let (outgoing, framework_output, output_tasks) = outgoing::start(output);
+    let (service, socket) = LspService::build(move |client| server::Backend::new(client, outgoing))
         .custom_method(ext::DOCUMENT_TEXT_REQUEST, server::Backend::document_text)
         .finish();
-    Server::new(input, output, socket).serve(service).await;
+    Server::new(input, framework_output, socket).serve(service).await;
+    output_tasks.finish().await;
 }
 
 /// Runs the server on the process's stdin and stdout; returns the exit code.
