@@ -88,7 +88,7 @@ fn axis_hover(word: &Word<'_>, axis: &str, line_words: &[Word<'_>], report: &Blo
         Some(resolution) => resolution.clone(),
         None => resolution_from_movement(word, axis, line_words, report, config),
     };
-    let mut text = explain_resolution(&resolution, &report.before, config);
+    let mut text = explain_resolution(&resolution, &report.after, config);
     if report.before.flow_uncertain {
         text.push_str("\n\n⚠ A label, jump or loop comes before this block: the control may run another path than program order, so these values may not be the control's.");
     }
@@ -109,7 +109,8 @@ fn resolution_from_movement(word: &Word<'_>, axis: &str, line_words: &[Word<'_>]
     } else if let Some((name, _)) = word.modifier() {
         Modifier::from_name(name).map_or(ResolutionMode::Unknown, ResolutionMode::Override)
     } else {
-        match report.before.distance.as_deref() {
+        // The block's own G functions apply to its words: the state in effect is the one after it.
+        match report.after.distance.as_deref() {
             Some("G90") => ResolutionMode::Absolute,
             Some("G91") => ResolutionMode::Incremental,
             _ => ResolutionMode::Unknown,
@@ -119,7 +120,7 @@ fn resolution_from_movement(word: &Word<'_>, axis: &str, line_words: &[Word<'_>]
     let unit_factor = if axis_kind.is_some_and(AxisKind::is_rotary) {
         Some(1.0)
     } else {
-        match report.before.units.as_deref() {
+        match report.after.units.as_deref() {
             Some("G70" | "G700") => Some(if config.metric { 25.4 } else { 1.0 }),
             Some("G71" | "G710") => Some(if config.metric { 1.0 } else { 1.0 / 25.4 }),
             _ => None,
@@ -157,8 +158,9 @@ fn is_incremental(mode: ResolutionMode) -> bool {
     )
 }
 
-fn mode_note(mode: ResolutionMode, before: &StateSummary) -> String {
-    let modal = before.distance.as_deref().unwrap_or("the modal G90/G91");
+/// `in_effect` is the modal state that applies to the block's words (after its own G functions).
+fn mode_note(mode: ResolutionMode, in_effect: &StateSummary) -> String {
+    let modal = in_effect.distance.as_deref().unwrap_or("the modal G90/G91");
     match mode {
         ResolutionMode::Absolute => "G90: absolute".to_string(),
         ResolutionMode::Incremental => "G91: incremental".to_string(),
@@ -186,12 +188,13 @@ fn mode_note(mode: ResolutionMode, before: &StateSummary) -> String {
     }
 }
 
-/// The explanation of one resolved word, e.g. `Z = 90.000 + (-32.000) = **58.000** mm (IC: ...)`.
-pub fn explain_resolution(resolution: &WordResolution, before: &StateSummary, config: &MachineConfig) -> String {
+/// The explanation of one resolved word, e.g. `Z = 90.000 + (-32.000) = **58.000** mm (IC: ...)`;
+/// `in_effect` is the modal state that applies to the block's words.
+pub fn explain_resolution(resolution: &WordResolution, in_effect: &StateSummary, config: &MachineConfig) -> String {
     let axis = &resolution.axis;
     let axis_kind = config.axis(axis).map(|axis| axis.kind);
     let unit = units_label(config, axis_kind);
-    let note = mode_note(resolution.mode, before);
+    let note = mode_note(resolution.mode, in_effect);
     let mut text = String::new();
     let Some(end) = resolution.end else {
         let reason = resolution
@@ -227,7 +230,7 @@ pub fn explain_resolution(resolution: &WordResolution, before: &StateSummary, co
             let _ = write!(text, "{formula} ({note})");
         }
         None => match resolution.start {
-            Some(start) if !same(start, end) => {
+            Some(start) if is_incremental(resolution.mode) && !same(start, end) => {
                 let _ = write!(text, "{axis}: {} → **{}** {unit} ({note})", fixed(start), fixed(end));
             }
             _ => {
