@@ -90,6 +90,7 @@ const HINTS: &[HintCase] = &[
     HintCase { config: None, file: "incremental.mpf", program: "N10 G90 G0 X20 Z90\nN20 G91 X5\nN30 X=AC(5)\nN40 G90 X7 Z=IC(1)$0", expected: &[(1, "⟶ X25 Z90"), (2, "⟶ X5 Z90"), (3, "⟶ X7 Z91")] },
     HintCase { config: None, file: "inch.mpf", program: "N10 G90 G0 X0 Z0\nN20 G70 X1$0", expected: &[(1, "⟶ X25.4 Z0")] },
     HintCase { config: None, file: "frame.mpf", program: "N10 G90 G0 X0 Z0\nN20 TRANS X10\nN30 X5$0", expected: &[(2, "⟶ X5 Z0 (machine X15 Z0)")] },
+    HintCase { config: None, file: "polar.mpf", program: "N10 G90 G17 G0 X0 Y0 Z0\nN20 G111 X10 Y10\nN30 G1 AP=90 RP=5 F100$0", expected: &[(2, "⟶ X10 Y15 Z0")] },
     HintCase { config: None, file: "unknown.spf", program: "N10 G90 G71 G1 X1 Z=IC(2) F100$0", expected: &[(0, "⟶ X1 Z?")] },
 ];
 

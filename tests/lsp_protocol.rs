@@ -331,6 +331,16 @@ async fn bad_requests_and_notifications_are_answered_or_logged_and_the_server_ke
     let hover = client.hover(SEED_URI, 3, 4000).await;
     assert!(hover.contains("Modal state"), "{hover}");
 
+    // A cancelled request is answered (with its result or as cancelled) and the server goes on.
+    let id = client
+        .send_request("textDocument/hover", json!({"textDocument": {"uri": SEED_URI}, "position": {"line": 3, "character": 9}}))
+        .await;
+    client.notify("$/cancelRequest", json!({"id": id})).await;
+    match client.response(id).await {
+        Ok(result) => assert!(result["contents"]["value"].as_str().unwrap().contains("Z")),
+        Err(error) => assert_eq!(error["code"], -32800),
+    }
+
     // Malformed params, an unknown method, an unknown command, and bytes that are not JSON.
     let error = client.request("textDocument/hover", json!({"position": "nowhere"})).await.unwrap_err();
     assert_eq!(error["code"], -32602);
