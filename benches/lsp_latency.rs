@@ -49,7 +49,11 @@ impl Server {
         let mut child = Command::new(env!("CARGO_BIN_EXE_sinumerik-lsp"))
             .stdin(Stdio::piped())
             .stdout(Stdio::piped())
-            .stderr(Stdio::null())
+            // BENCH_SERVER_LOG=FILE keeps the server's log (slow handlers, analysis times).
+            .stderr(match std::env::var("BENCH_SERVER_LOG") {
+                Ok(path) => Stdio::from(std::fs::File::create(path).expect("the log file can be created")),
+                Err(_) => Stdio::null(),
+            })
             .spawn()
             .expect("the server binary starts");
         let stdin = child.stdin.take().unwrap();
@@ -210,6 +214,7 @@ fn run(style: &str, line_count: usize) {
     let uri = format!("file:///bench/{style}.mpf");
     let open = frame(&json!({"jsonrpc": "2.0", "method": "textDocument/didOpen", "params": {"textDocument": {"uri": uri, "languageId": "sinumerik", "version": 1, "text": text}}}));
     drop(text);
+    json_costs(&open);
     let started = server.send(&open);
     drop(open);
     let first = server.diagnostics_of(1);
@@ -259,6 +264,29 @@ fn run(style: &str, line_count: usize) {
         println!("  resident memory at the end: {:.1} MB ({:.2}x the file)", resident as f64 / 1024.0, resident as f64 * 1024.0 / (megabytes * 1e6));
     }
     server.stop();
+}
+
+/// What reading the didOpen message costs a server, measured here with the same libraries: the
+/// framing guard's check, and the framework's parse into a JSON value and then into typed params.
+fn json_costs(framed: &[u8]) {
+    let body_start = framed.windows(4).position(|window| window == b"\r\n\r\n").map_or(0, |index| index + 4);
+    let body = &framed[body_start..];
+    let started = Instant::now();
+    let valid = std::str::from_utf8(body).is_ok() && serde_json::from_slice::<serde::de::IgnoredAny>(body).is_ok();
+    let checked = started.elapsed();
+    let started = Instant::now();
+    let value: Value = serde_json::from_str(std::str::from_utf8(body).unwrap()).unwrap();
+    let parsed = started.elapsed();
+    let started = Instant::now();
+    let params: tower_lsp_server::ls_types::DidOpenTextDocumentParams = serde_json::from_value(value["params"].clone()).unwrap();
+    let typed = started.elapsed();
+    println!(
+        "  reading the didOpen message (measured here): check {} (valid: {valid}), to a JSON value {}, to typed params {} ({} bytes of text)",
+        milliseconds(checked),
+        milliseconds(parsed),
+        milliseconds(typed),
+        params.text_document.text.len()
+    );
 }
 
 /// What serializing a publishDiagnostics of `count` diagnostics costs the server by itself.

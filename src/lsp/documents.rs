@@ -235,6 +235,7 @@ impl OpenDocument {
             let started = std::time::Instant::now();
             let result = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
                 let slot = self.catch_up();
+                let analysed_in = started.elapsed();
                 slot.as_ref().map(|analysed| {
                     let lines = analysed.lines();
                     let diagnostics = diagnostics_to_lsp(
@@ -242,12 +243,19 @@ impl OpenDocument {
                         |line_idx| lines.line(line_idx),
                         context.encoding,
                     );
-                    (analysed.revision, analysed.version, diagnostics)
+                    (analysed.revision, analysed.version, diagnostics, analysed_in)
                 })
             }));
-            log::slow("analysis and diagnostics", started.elapsed(), &context.outgoing);
+            if let Ok(Some((_, _, diagnostics, analysed_in))) = &result {
+                let count = diagnostics.len();
+                log::slow_with_sender(
+                    || format!("analysis ({} ms) and conversion of {count} diagnostics", analysed_in.as_millis()),
+                    started.elapsed(),
+                    &context.outgoing,
+                );
+            }
             match result {
-                Ok(Some((revision, version, diagnostics))) => {
+                Ok(Some((revision, version, diagnostics, _))) => {
                     let mut text = lock(&self.text);
                     if text.closed {
                         text.worker_running = false;
