@@ -8,7 +8,7 @@
 use crate::analysis::document::{DocumentAnalysis, LineSource};
 use crate::analysis::ProgramKind;
 use crate::config::MachineConfig;
-use crate::lsp::convert::{diagnostics_to_lsp, PositionEncoding};
+use crate::lsp::convert::{publish_diagnostics_body, PositionEncoding};
 use crate::lsp::log;
 use crate::lsp::outgoing::{Outgoing, OutgoingSender};
 use crate::lsp::text_document::{
@@ -238,24 +238,26 @@ impl OpenDocument {
                 let analysed_in = started.elapsed();
                 slot.as_ref().map(|analysed| {
                     let lines = analysed.lines();
-                    let diagnostics = diagnostics_to_lsp(
-                        analysed.analysis.diagnostics(),
+                    let diagnostics = analysed.analysis.diagnostics();
+                    let body = publish_diagnostics_body(
+                        &self.uri,
+                        Some(analysed.version),
+                        diagnostics,
                         |line_idx| lines.line(line_idx),
                         context.encoding,
                     );
-                    (analysed.revision, analysed.version, diagnostics, analysed_in)
+                    (analysed.revision, body, diagnostics.len(), analysed_in)
                 })
             }));
-            if let Ok(Some((_, _, diagnostics, analysed_in))) = &result {
-                let count = diagnostics.len();
+            if let Ok(Some((_, _, count, analysed_in))) = &result {
                 log::slow_with_sender(
-                    || format!("analysis ({} ms) and conversion of {count} diagnostics", analysed_in.as_millis()),
+                    || format!("analysis ({} ms) and writing of {count} diagnostics", analysed_in.as_millis()),
                     started.elapsed(),
                     &context.outgoing,
                 );
             }
             match result {
-                Ok(Some((revision, version, diagnostics, _))) => {
+                Ok(Some((revision, body, _, _))) => {
                     let mut text = lock(&self.text);
                     if text.closed {
                         text.worker_running = false;
@@ -263,11 +265,7 @@ impl OpenDocument {
                     }
                     if text.revision == revision {
                         // Sent under the lock: a newer revision's publication cannot overtake it.
-                        context.outgoing.send(Outgoing::Diagnostics {
-                            uri: self.uri.clone(),
-                            version: Some(version),
-                            diagnostics,
-                        });
+                        context.outgoing.send_body(body);
                         text.worker_running = false;
                         return;
                     }

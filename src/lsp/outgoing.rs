@@ -40,9 +40,13 @@ struct Notification<'a, P> {
 
 fn framed<P: Serialize>(method: &'static str, params: &P) -> Option<Vec<u8>> {
     let body = serde_json::to_vec(&Notification { jsonrpc: "2.0", method, params }).ok()?;
+    Some(with_header(&body))
+}
+
+fn with_header(body: &[u8]) -> Vec<u8> {
     let mut message = format!("Content-Length: {}\r\n\r\n", body.len()).into_bytes();
-    message.extend_from_slice(&body);
-    Some(message)
+    message.extend_from_slice(body);
+    message
 }
 
 /// The sending side; sending never blocks and never fails (after the end the messages are dropped).
@@ -65,6 +69,11 @@ impl OutgoingSender {
         if let Some(frame) = frame {
             let _ = self.0.send(Frame::Message(frame));
         }
+    }
+
+    /// Queues a message whose JSON body is already written.
+    pub fn send_body(&self, body: Vec<u8>) {
+        let _ = self.0.send(Frame::Message(with_header(&body)));
     }
 
     /// Logs on stderr and as `window/logMessage`.
