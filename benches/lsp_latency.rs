@@ -49,11 +49,10 @@ impl Server {
         let mut child = Command::new(env!("CARGO_BIN_EXE_sinumerik-lsp"))
             .stdin(Stdio::piped())
             .stdout(Stdio::piped())
-            // BENCH_SERVER_LOG=FILE keeps the server's log (slow handlers, analysis times).
-            .stderr(match std::env::var("BENCH_SERVER_LOG") {
-                Ok(path) => Stdio::from(std::fs::File::create(path).expect("the log file can be created")),
-                Err(_) => Stdio::null(),
-            })
+            // The server's log says how long its analyses and diagnostics took (when over 100 ms).
+            .stderr(Stdio::from(
+                std::fs::File::create(log_path()).expect("the log file can be created"),
+            ))
             .spawn()
             .expect("the server binary starts");
         let stdin = child.stdin.take().unwrap();
@@ -82,12 +81,24 @@ impl Server {
                 }
                 let at = Instant::now();
                 let message = serde_json::from_slice(&body).unwrap_or(Value::Null);
-                if sender.send(Arrival { at, bytes: length, message }).is_err() {
+                if sender
+                    .send(Arrival {
+                        at,
+                        bytes: length,
+                        message,
+                    })
+                    .is_err()
+                {
                     return;
                 }
             }
         });
-        Server { child, stdin, arrivals, next_id: 1 }
+        Server {
+            child,
+            stdin,
+            arrivals,
+            next_id: 1,
+        }
     }
 
     /// Sends an encoded message; returns the moment it started to go out.
@@ -106,13 +117,17 @@ impl Server {
     fn request(&mut self, method: &str, params: Value) -> (Instant, i64) {
         let id = self.next_id;
         self.next_id += 1;
-        let encoded = frame(&json!({"jsonrpc": "2.0", "id": id, "method": method, "params": params}));
+        let encoded =
+            frame(&json!({"jsonrpc": "2.0", "id": id, "method": method, "params": params}));
         (self.send(&encoded), id)
     }
 
     fn wait_for(&mut self, wanted: impl Fn(&Value) -> bool) -> Arrival {
         loop {
-            let arrival = self.arrivals.recv_timeout(TIMEOUT).expect("the server answers");
+            let arrival = self
+                .arrivals
+                .recv_timeout(TIMEOUT)
+                .expect("the server answers");
             if wanted(&arrival.message) {
                 return arrival;
             }
@@ -121,7 +136,8 @@ impl Server {
 
     fn diagnostics_of(&mut self, version: i64) -> Arrival {
         self.wait_for(|message| {
-            message["method"] == "textDocument/publishDiagnostics" && message["params"]["version"] == version
+            message["method"] == "textDocument/publishDiagnostics"
+                && message["params"]["version"] == version
         })
     }
 
@@ -139,6 +155,39 @@ impl Server {
         self.notify("exit", Value::Null);
         let _ = self.child.wait();
     }
+}
+
+fn log_path() -> std::path::PathBuf {
+    std::env::temp_dir().join(format!("sinumerik-lsp-latency-{}.log", std::process::id()))
+}
+
+/// From the server's log lines "analysis (A ms) and writing of N diagnostics took T ms": the median
+/// time the server spent turning its diagnostics into the notification (T - A), over the runs logged.
+fn writing_cost_from_log() {
+    let log = std::fs::read_to_string(log_path()).unwrap_or_default();
+    let mut samples: Vec<(u64, usize)> = log
+        .lines()
+        .filter_map(|line| {
+            let rest = line.split_once("analysis (")?.1;
+            let (analysis, rest) = rest.split_once(" ms) and writing of ")?;
+            let (count, rest) = rest.split_once(" diagnostics took ")?;
+            let total = rest.strip_suffix(" ms")?;
+            Some((
+                total
+                    .parse::<u64>()
+                    .ok()?
+                    .saturating_sub(analysis.parse().ok()?),
+                count.parse().ok()?,
+            ))
+        })
+        .collect();
+    if samples.is_empty() {
+        println!("  server-side writing of the diagnostics: not logged (analysis and writing under 100 ms)");
+        return;
+    }
+    samples.sort();
+    let (median, count) = samples[samples.len() / 2];
+    println!("  server-side conversion and writing of {count} diagnostics: median {median} ms ({} runs logged)", samples.len());
 }
 
 /// xorshift64*: repeatable random lines.
@@ -170,11 +219,19 @@ fn summary(name: &str, samples: &mut [Duration]) {
     }
     let median = percentile(samples, 0.5);
     let p99 = percentile(samples, 0.99);
-    println!("  {name}: median {}, p99 {} ({} samples)", milliseconds(median), milliseconds(p99), samples.len());
+    println!(
+        "  {name}: median {}, p99 {} ({} samples)",
+        milliseconds(median),
+        milliseconds(p99),
+        samples.len()
+    );
 }
 
 fn env_number(name: &str, default: usize) -> usize {
-    std::env::var(name).ok().and_then(|value| value.parse().ok()).unwrap_or(default)
+    std::env::var(name)
+        .ok()
+        .and_then(|value| value.parse().ok())
+        .unwrap_or(default)
 }
 
 /// Where a one-character edit goes on line `line` of the program: a space at the start (cam3d), or
@@ -184,13 +241,23 @@ fn edit_for(style: &str, line: &str) -> Option<(usize, usize, String)> {
         return Some((0, 0, " ".to_string()));
     }
     let bytes = line.as_bytes();
-    let axis = bytes.iter().position(|&byte| byte == b'X' || byte == b'Y' || byte == b'Z')?;
+    let axis = bytes
+        .iter()
+        .position(|&byte| byte == b'X' || byte == b'Y' || byte == b'Z')?;
     let mut end = axis + 1;
-    while end < bytes.len() && (bytes[end].is_ascii_digit() || bytes[end] == b'.' || bytes[end] == b'-') {
+    while end < bytes.len()
+        && (bytes[end].is_ascii_digit() || bytes[end] == b'.' || bytes[end] == b'-')
+    {
         end += 1;
     }
-    let digit = (axis + 1..end).rev().find(|&index| bytes[index].is_ascii_digit())?;
-    let replacement = if bytes[digit] == b'9' { '8' } else { (bytes[digit] + 1) as char };
+    let digit = (axis + 1..end)
+        .rev()
+        .find(|&index| bytes[index].is_ascii_digit())?;
+    let replacement = if bytes[digit] == b'9' {
+        '8'
+    } else {
+        (bytes[digit] + 1) as char
+    };
     Some((digit, digit + 1, replacement.to_string()))
 }
 
@@ -212,13 +279,17 @@ fn run(style: &str, line_count: usize) {
     server.notify("initialized", json!({}));
 
     let uri = format!("file:///bench/{style}.mpf");
-    let open = frame(&json!({"jsonrpc": "2.0", "method": "textDocument/didOpen", "params": {"textDocument": {"uri": uri, "languageId": "sinumerik", "version": 1, "text": text}}}));
+    let open = frame(
+        &json!({"jsonrpc": "2.0", "method": "textDocument/didOpen", "params": {"textDocument": {"uri": uri, "languageId": "sinumerik", "version": 1, "text": text}}}),
+    );
     drop(text);
     json_costs(&open);
     let started = server.send(&open);
     drop(open);
     let first = server.diagnostics_of(1);
-    let diagnostic_count = first.message["params"]["diagnostics"].as_array().map_or(0, Vec::len);
+    let diagnostic_count = first.message["params"]["diagnostics"]
+        .as_array()
+        .map_or(0, Vec::len);
     println!(
         "  didOpen to first publishDiagnostics: {} ({diagnostic_count} diagnostics, a {:.1} MB message)",
         milliseconds(first.at - started),
@@ -227,9 +298,16 @@ fn run(style: &str, line_count: usize) {
     // What that message costs the client to read is part of every edit's latency as well.
     let parse_started = Instant::now();
     let _: Value = serde_json::from_slice(&serde_json::to_vec(&first.message).unwrap()).unwrap();
-    println!("  reading that message back as JSON (client side, for scale): {}", milliseconds(parse_started.elapsed()));
+    println!(
+        "  reading that message back as JSON (client side, for scale): {}",
+        milliseconds(parse_started.elapsed())
+    );
     if let Some(resident) = server.resident_kib() {
-        println!("  resident memory after open: {:.1} MB ({:.2}x the file)", resident as f64 / 1024.0, resident as f64 * 1024.0 / (megabytes * 1e6));
+        println!(
+            "  resident memory after open: {:.1} MB ({:.2}x the file)",
+            resident as f64 / 1024.0,
+            resident as f64 * 1024.0 / (megabytes * 1e6)
+        );
     }
 
     let mut random = Random(0x5EED ^ line_count as u64);
@@ -238,47 +316,67 @@ fn run(style: &str, line_count: usize) {
     let edit_started = Instant::now();
     while edits.len() < env_number("BENCH_EDITS", 200) && edit_started.elapsed() < budget {
         let line_idx = random.below(lines.len());
-        let Some((start, end, new_text)) = edit_for(style, &lines[line_idx]) else { continue };
+        let Some((start, end, new_text)) = edit_for(style, &lines[line_idx]) else {
+            continue;
+        };
         version += 1;
         let change = json!([{"range": {"start": {"line": line_idx, "character": start}, "end": {"line": line_idx, "character": end}}, "text": new_text}]);
-        let encoded = frame(&json!({"jsonrpc": "2.0", "method": "textDocument/didChange", "params": {"textDocument": {"uri": uri, "version": version}, "contentChanges": change}}));
+        let encoded = frame(
+            &json!({"jsonrpc": "2.0", "method": "textDocument/didChange", "params": {"textDocument": {"uri": uri, "version": version}, "contentChanges": change}}),
+        );
         let sent = server.send(&encoded);
         let arrival = server.diagnostics_of(version);
         edits.push(arrival.at - sent);
         lines[line_idx].replace_range(start..end, &new_text);
     }
-    let kind = if style == "cam3d" { "space at the start of a line" } else { "changed coordinate digit" };
+    let kind = if style == "cam3d" {
+        "space at the start of a line"
+    } else {
+        "changed coordinate digit"
+    };
     summary(&format!("edit ({kind}) to publishDiagnostics"), &mut edits);
 
     let mut hovers = Vec::new();
     let hover_started = Instant::now();
     while hovers.len() < env_number("BENCH_HOVERS", 200) && hover_started.elapsed() < budget {
         let line_idx = random.below(lines.len());
-        let Some(column) = lines[line_idx].find(['X', 'Y', 'Z']) else { continue };
+        let Some(column) = lines[line_idx].find(['X', 'Y', 'Z']) else {
+            continue;
+        };
         let (sent, id) = server.request("textDocument/hover", json!({"textDocument": {"uri": uri}, "position": {"line": line_idx, "character": column}}));
         let arrival = server.wait_for(|message| message["id"] == id);
         hovers.push(arrival.at - sent);
     }
     summary("hover on an axis word", &mut hovers);
     if let Some(resident) = server.resident_kib() {
-        println!("  resident memory at the end: {:.1} MB ({:.2}x the file)", resident as f64 / 1024.0, resident as f64 * 1024.0 / (megabytes * 1e6));
+        println!(
+            "  resident memory at the end: {:.1} MB ({:.2}x the file)",
+            resident as f64 / 1024.0,
+            resident as f64 * 1024.0 / (megabytes * 1e6)
+        );
     }
     server.stop();
+    writing_cost_from_log();
 }
 
 /// What reading the didOpen message costs a server, measured here with the same libraries: the
 /// framing guard's check, and the framework's parse into a JSON value and then into typed params.
 fn json_costs(framed: &[u8]) {
-    let body_start = framed.windows(4).position(|window| window == b"\r\n\r\n").map_or(0, |index| index + 4);
+    let body_start = framed
+        .windows(4)
+        .position(|window| window == b"\r\n\r\n")
+        .map_or(0, |index| index + 4);
     let body = &framed[body_start..];
     let started = Instant::now();
-    let valid = std::str::from_utf8(body).is_ok() && serde_json::from_slice::<serde::de::IgnoredAny>(body).is_ok();
+    let valid = std::str::from_utf8(body).is_ok()
+        && serde_json::from_slice::<serde::de::IgnoredAny>(body).is_ok();
     let checked = started.elapsed();
     let started = Instant::now();
     let value: Value = serde_json::from_str(std::str::from_utf8(body).unwrap()).unwrap();
     let parsed = started.elapsed();
     let started = Instant::now();
-    let params: tower_lsp_server::ls_types::DidOpenTextDocumentParams = serde_json::from_value(value["params"].clone()).unwrap();
+    let params: tower_lsp_server::ls_types::DidOpenTextDocumentParams =
+        serde_json::from_value(value["params"].clone()).unwrap();
     let typed = started.elapsed();
     println!(
         "  reading the didOpen message (measured here): check {} (valid: {valid}), to a JSON value {}, to typed params {} ({} bytes of text)",
@@ -291,14 +389,21 @@ fn json_costs(framed: &[u8]) {
 
 /// What serializing a publishDiagnostics of `count` diagnostics costs the server by itself.
 fn serialization_cost(count: usize) {
-    use tower_lsp_server::ls_types::{Diagnostic, DiagnosticSeverity, NumberOrString, Position, PublishDiagnosticsParams, Range, Uri};
+    use tower_lsp_server::ls_types::{
+        Diagnostic, DiagnosticSeverity, NumberOrString, Position, PublishDiagnosticsParams, Range,
+        Uri,
+    };
     let diagnostics: Vec<Diagnostic> = (0..count)
         .map(|index| Diagnostic {
-            range: Range::new(Position::new(index as u32 * 40, 4), Position::new(index as u32 * 40, 30)),
+            range: Range::new(
+                Position::new(index as u32 * 40, 4),
+                Position::new(index as u32 * 40, 30),
+            ),
             severity: Some(DiagnosticSeverity::ERROR),
             code: Some(NumberOrString::String("A206".to_string())),
             source: Some("sinumerik".to_string()),
-            message: "the end point is 0.412 mm off the circle (allowed 0.010 mm, alarm 14040)".to_string(),
+            message: "the end point is 0.412 mm off the circle (allowed 0.010 mm, alarm 14040)"
+                .to_string(),
             ..Diagnostic::default()
         })
         .collect();

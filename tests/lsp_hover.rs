@@ -36,7 +36,11 @@ const HOVERS: &[Case] = &[
 
 /// Opens the case's program (in a folder with its sinumerik.toml, if any) and returns its URI, the
 /// text without the marker and the marker's position.
-async fn open_case(client: &mut TestClient, case: &Case, folder: &std::path::Path) -> (String, String, (u32, u32)) {
+async fn open_case(
+    client: &mut TestClient,
+    case: &Case,
+    folder: &std::path::Path,
+) -> (String, String, (u32, u32)) {
     let case_folder = folder.join(case.file.replace('.', "_"));
     std::fs::create_dir_all(&case_folder).unwrap();
     if let Some(config) = case.config {
@@ -86,12 +90,42 @@ struct HintCase {
 }
 
 const HINTS: &[HintCase] = &[
-    HintCase { config: None, file: "plain.mpf", program: "N10 G90 G0 X20 Z90\nN20 G1 X30 F100\nN30 G2 X40 Z100 CR=10$0", expected: &[] },
-    HintCase { config: None, file: "incremental.mpf", program: "N10 G90 G0 X20 Z90\nN20 G91 X5\nN30 X=AC(5)\nN40 G90 X7 Z=IC(1)$0", expected: &[(1, "⟶ X25 Z90"), (2, "⟶ X5 Z90"), (3, "⟶ X7 Z91")] },
-    HintCase { config: None, file: "inch.mpf", program: "N10 G90 G0 X0 Z0\nN20 G70 X1$0", expected: &[(1, "⟶ X25.4 Z0")] },
-    HintCase { config: None, file: "frame.mpf", program: "N10 G90 G0 X0 Z0\nN20 TRANS X10\nN30 X5$0", expected: &[(2, "⟶ X5 Z0 (machine X15 Z0)")] },
-    HintCase { config: None, file: "polar.mpf", program: "N10 G90 G17 G0 X0 Y0 Z0\nN20 G111 X10 Y10\nN30 G1 AP=90 RP=5 F100$0", expected: &[(2, "⟶ X10 Y15 Z0")] },
-    HintCase { config: None, file: "unknown.spf", program: "N10 G90 G71 G1 X1 Z=IC(2) F100$0", expected: &[(0, "⟶ X1 Z?")] },
+    HintCase {
+        config: None,
+        file: "plain.mpf",
+        program: "N10 G90 G0 X20 Z90\nN20 G1 X30 F100\nN30 G2 X40 Z100 CR=10$0",
+        expected: &[],
+    },
+    HintCase {
+        config: None,
+        file: "incremental.mpf",
+        program: "N10 G90 G0 X20 Z90\nN20 G91 X5\nN30 X=AC(5)\nN40 G90 X7 Z=IC(1)$0",
+        expected: &[(1, "⟶ X25 Z90"), (2, "⟶ X5 Z90"), (3, "⟶ X7 Z91")],
+    },
+    HintCase {
+        config: None,
+        file: "inch.mpf",
+        program: "N10 G90 G0 X0 Z0\nN20 G70 X1$0",
+        expected: &[(1, "⟶ X25.4 Z0")],
+    },
+    HintCase {
+        config: None,
+        file: "frame.mpf",
+        program: "N10 G90 G0 X0 Z0\nN20 TRANS X10\nN30 X5$0",
+        expected: &[(2, "⟶ X5 Z0 (machine X15 Z0)")],
+    },
+    HintCase {
+        config: None,
+        file: "polar.mpf",
+        program: "N10 G90 G17 G0 X0 Y0 Z0\nN20 G111 X10 Y10\nN30 G1 AP=90 RP=5 F100$0",
+        expected: &[(2, "⟶ X10 Y15 Z0")],
+    },
+    HintCase {
+        config: None,
+        file: "unknown.spf",
+        program: "N10 G90 G71 G1 X1 Z=IC(2) F100$0",
+        expected: &[(0, "⟶ X1 Z?")],
+    },
 ];
 
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
@@ -100,7 +134,12 @@ async fn inlay_hints_mark_end_points_that_are_not_plain() {
     let mut client = TestClient::in_process();
     client.initialize(json!({}), Value::Null).await;
     for case in HINTS {
-        let hover_case = Case { config: case.config, file: case.file, program: case.program, expected: &[] };
+        let hover_case = Case {
+            config: case.config,
+            file: case.file,
+            program: case.program,
+            expected: &[],
+        };
         let (uri, _, _) = open_case(&mut client, &hover_case, &folder).await;
         let hints = client
             .request("textDocument/inlayHint", json!({"textDocument": {"uri": uri}, "range": {"start": {"line": 0, "character": 0}, "end": {"line": 50, "character": 0}}}))
@@ -110,9 +149,18 @@ async fn inlay_hints_mark_end_points_that_are_not_plain() {
             .as_array()
             .unwrap()
             .iter()
-            .map(|hint| (hint["position"]["line"].as_u64().unwrap(), hint["label"].as_str().unwrap().to_string()))
+            .map(|hint| {
+                (
+                    hint["position"]["line"].as_u64().unwrap(),
+                    hint["label"].as_str().unwrap().to_string(),
+                )
+            })
             .collect();
-        let expected: Vec<(u64, String)> = case.expected.iter().map(|(line, label)| (*line, label.to_string())).collect();
+        let expected: Vec<(u64, String)> = case
+            .expected
+            .iter()
+            .map(|(line, label)| (*line, label.to_string()))
+            .collect();
         assert_eq!(labels, expected, "{}", case.file);
     }
     let _ = std::fs::remove_dir_all(&folder);

@@ -22,7 +22,11 @@ async fn initialized_client() -> TestClient {
 
 /// The diagnostics a from-scratch analysis gives, as (line, code) pairs.
 fn expected_codes(text: &str, kind: ProgramKind) -> Vec<(u64, String)> {
-    let analysis = DocumentAnalysis::new(&TextLines::new(text), Arc::new(MachineConfig::default()), kind);
+    let analysis = DocumentAnalysis::new(
+        &TextLines::new(text),
+        Arc::new(MachineConfig::default()),
+        kind,
+    );
     analysis
         .diagnostics()
         .iter()
@@ -33,7 +37,12 @@ fn expected_codes(text: &str, kind: ProgramKind) -> Vec<(u64, String)> {
 fn codes(diagnostics: &[Value]) -> Vec<(u64, String)> {
     diagnostics
         .iter()
-        .map(|diagnostic| (diagnostic["range"]["start"]["line"].as_u64().unwrap(), diagnostic["code"].as_str().unwrap().to_string()))
+        .map(|diagnostic| {
+            (
+                diagnostic["range"]["start"]["line"].as_u64().unwrap(),
+                diagnostic["code"].as_str().unwrap().to_string(),
+            )
+        })
         .collect()
 }
 
@@ -46,12 +55,23 @@ async fn initialize_announces_the_features_and_negotiates_the_encoding() {
     assert_eq!(capabilities["textDocumentSync"]["change"], 2);
     assert_eq!(capabilities["hoverProvider"], true);
     assert_eq!(capabilities["inlayHintProvider"], true);
-    assert_eq!(capabilities["executeCommandProvider"]["commands"], json!(["sinumerik.endpointPreview"]));
-    assert_eq!(capabilities["codeActionProvider"]["codeActionKinds"], json!(["quickfix"]));
+    assert_eq!(
+        capabilities["executeCommandProvider"]["commands"],
+        json!(["sinumerik.endpointPreview"])
+    );
+    assert_eq!(
+        capabilities["codeActionProvider"]["codeActionKinds"],
+        json!(["quickfix"])
+    );
     client.shutdown().await;
 
     let mut client = TestClient::in_process();
-    let result = client.initialize(json!({"general": {"positionEncodings": ["utf-16", "utf-8"]}}), Value::Null).await;
+    let result = client
+        .initialize(
+            json!({"general": {"positionEncodings": ["utf-16", "utf-8"]}}),
+            Value::Null,
+        )
+        .await;
     assert_eq!(result["capabilities"]["positionEncoding"], "utf-8");
     client.shutdown().await;
 }
@@ -62,21 +82,36 @@ async fn the_seed_example_gets_its_diagnostics_and_hovers() {
     let text = seed_text();
     client.open(SEED_URI, 1, &text).await;
     let diagnostics = client.diagnostics(SEED_URI, 1).await;
-    assert_eq!(codes(&diagnostics), expected_codes(&text, ProgramKind::Main));
+    assert_eq!(
+        codes(&diagnostics),
+        expected_codes(&text, ProgramKind::Main)
+    );
 
     let (line, character) = position_of(&text, "Z=IC(-32)");
     let hover = client.hover(SEED_URI, line, character + 3).await;
-    assert!(hover.contains("Z = 90.000 + (-32.000) = **58.000** mm"), "{hover}");
-    assert!(hover.contains("IC: incremental for this block only; G90 stays active"), "{hover}");
+    assert!(
+        hover.contains("Z = 90.000 + (-32.000) = **58.000** mm"),
+        "{hover}"
+    );
+    assert!(
+        hover.contains("IC: incremental for this block only; G90 stays active"),
+        "{hover}"
+    );
 
     let (line, character) = position_of(&text, "X-12");
     let hover = client.hover(SEED_URI, line, character).await;
-    assert!(hover.contains("X = 115.000 + (-12.000) = **103.000** mm (G91: incremental)"), "{hover}");
+    assert!(
+        hover.contains("X = 115.000 + (-12.000) = **103.000** mm (G91: incremental)"),
+        "{hover}"
+    );
 
     let (line, character) = position_of(&text, "G91 X40");
     let hover = client.hover(SEED_URI, line, character + 1).await;
     assert!(hover.contains("**G91**"), "{hover}");
-    assert!(hover.contains("Group 14 (absolute / incremental), modal"), "{hover}");
+    assert!(
+        hover.contains("Group 14 (absolute / incremental), modal"),
+        "{hover}"
+    );
     assert!(hover.contains("Before this block: **G90**"), "{hover}");
 
     let (line, character) = position_of(&text, "N190");
@@ -90,12 +125,19 @@ async fn the_seed_example_gets_its_diagnostics_and_hovers() {
 async fn edits_after_crlf_umlauts_and_an_emoji_land_on_the_right_column_and_a_fix_applies() {
     let mut client = initialized_client().await;
     let uri = "file:///nonexistent/umlauts.mpf";
-    let text = "N10 G90 G0 X1 Z1\r\nN20 MSG(\"Grüße 😀\") Z=AC17 F100\r\nN30 G1 X=IC(5) ; Ä 😀 Ü\r\n";
+    let text =
+        "N10 G90 G0 X1 Z1\r\nN20 MSG(\"Grüße 😀\") Z=AC17 F100\r\nN30 G1 X=IC(5) ; Ä 😀 Ü\r\n";
     client.open(uri, 1, text).await;
     let diagnostics = client.diagnostics(uri, 1).await;
-    let s101 = diagnostics.iter().find(|diagnostic| diagnostic["code"] == "S101").expect("S101 for Z=AC17");
+    let s101 = diagnostics
+        .iter()
+        .find(|diagnostic| diagnostic["code"] == "S101")
+        .expect("S101 for Z=AC17");
     // 21 characters before `AC17`, the emoji counting as two UTF-16 code units.
-    assert_eq!(s101["range"], json!({"start": {"line": 1, "character": 22}, "end": {"line": 1, "character": 26}}));
+    assert_eq!(
+        s101["range"],
+        json!({"start": {"line": 1, "character": 22}, "end": {"line": 1, "character": 26}})
+    );
 
     // Typing in the comment after the emoji of line 2: UTF-16 column 22 is right after "😀 ".
     client.change(uri, 2, json!([{"range": {"start": {"line": 2, "character": 22}, "end": {"line": 2, "character": 22}}, "text": "ö"}])).await;
@@ -106,15 +148,32 @@ async fn edits_after_crlf_umlauts_and_an_emoji_land_on_the_right_column_and_a_fi
         .request("textDocument/codeAction", json!({"textDocument": {"uri": uri}, "range": s101["range"], "context": {"diagnostics": [s101]}}))
         .await
         .unwrap();
-    let action = actions.as_array().unwrap().iter().find(|action| action["kind"] == "quickfix").expect("a quick fix");
+    let action = actions
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|action| action["kind"] == "quickfix")
+        .expect("a quick fix");
     let edits = action["edit"]["changes"][uri].as_array().unwrap().clone();
     assert_eq!(edits.len(), 1);
-    client.change(uri, 3, json!([{"range": edits[0]["range"], "text": edits[0]["newText"]}])).await;
-    let fixed = expected.replace("Z=AC17", &format!("Z={}", edits[0]["newText"].as_str().unwrap()));
+    client
+        .change(
+            uri,
+            3,
+            json!([{"range": edits[0]["range"], "text": edits[0]["newText"]}]),
+        )
+        .await;
+    let fixed = expected.replace(
+        "Z=AC17",
+        &format!("Z={}", edits[0]["newText"].as_str().unwrap()),
+    );
     assert!(fixed.contains("Z=AC(17)"), "{fixed}");
     assert_eq!(client.document_text(uri).await, (3, fixed.clone()));
     let diagnostics = client.diagnostics(uri, 3).await;
-    assert_eq!(codes(&diagnostics), expected_codes(&fixed, ProgramKind::Main));
+    assert_eq!(
+        codes(&diagnostics),
+        expected_codes(&fixed, ProgramKind::Main)
+    );
     assert!(!codes(&diagnostics).iter().any(|(_, code)| code == "S101"));
     client.shutdown().await;
 }
@@ -122,11 +181,21 @@ async fn edits_after_crlf_umlauts_and_an_emoji_land_on_the_right_column_and_a_fi
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
 async fn utf8_positions_count_bytes() {
     let mut client = TestClient::in_process();
-    client.initialize(json!({"general": {"positionEncodings": ["utf-8"]}}), Value::Null).await;
+    client
+        .initialize(
+            json!({"general": {"positionEncodings": ["utf-8"]}}),
+            Value::Null,
+        )
+        .await;
     let uri = "file:///nonexistent/bytes.mpf";
-    client.open(uri, 1, "N20 MSG(\"Grüße 😀\") Z=AC17 F100\n").await;
+    client
+        .open(uri, 1, "N20 MSG(\"Grüße 😀\") Z=AC17 F100\n")
+        .await;
     let diagnostics = client.diagnostics(uri, 1).await;
-    let s101 = diagnostics.iter().find(|diagnostic| diagnostic["code"] == "S101").unwrap();
+    let s101 = diagnostics
+        .iter()
+        .find(|diagnostic| diagnostic["code"] == "S101")
+        .unwrap();
     assert_eq!(s101["range"]["start"]["character"], 26);
     assert_eq!(s101["range"]["end"]["character"], 30);
     client.shutdown().await;
@@ -137,7 +206,12 @@ fn hint_labels(hints: &Value) -> Vec<(u64, String)> {
         .as_array()
         .unwrap()
         .iter()
-        .map(|hint| (hint["position"]["line"].as_u64().unwrap(), hint["label"].as_str().unwrap().to_string()))
+        .map(|hint| {
+            (
+                hint["position"]["line"].as_u64().unwrap(),
+                hint["label"].as_str().unwrap().to_string(),
+            )
+        })
         .collect()
 }
 
@@ -153,7 +227,10 @@ async fn inlay_hints(client: &mut TestClient, uri: &str) -> Vec<(u64, String)> {
 async fn inlay_hints_show_end_points_that_are_not_plain_and_follow_the_setting() {
     let mut client = TestClient::in_process();
     client
-        .initialize(json!({"workspace": {"configuration": true, "inlayHint": {"refreshSupport": true}}}), Value::Null)
+        .initialize(
+            json!({"workspace": {"configuration": true, "inlayHint": {"refreshSupport": true}}}),
+            Value::Null,
+        )
         .await;
     let text = seed_text();
     client.open(SEED_URI, 1, &text).await;
@@ -172,10 +249,18 @@ async fn inlay_hints_show_end_points_that_are_not_plain_and_follow_the_setting()
         .await
         .unwrap();
     let n20_line = text.lines().nth(3).unwrap();
-    assert_eq!(hints[0]["position"]["character"], n20_line.encode_utf16().count());
+    assert_eq!(
+        hints[0]["position"]["character"],
+        n20_line.encode_utf16().count()
+    );
 
     // A pushed setting: every moving block. The server asks the client to refresh its hints.
-    client.notify("workspace/didChangeConfiguration", json!({"settings": {"sinumerik": {"inlayHints": "all"}}})).await;
+    client
+        .notify(
+            "workspace/didChangeConfiguration",
+            json!({"settings": {"sinumerik": {"inlayHints": "all"}}}),
+        )
+        .await;
     client.server_request("workspace/inlayHint/refresh").await;
     let all = inlay_hints(&mut client, SEED_URI).await;
     assert_eq!(all.len(), 4, "{all:?}");
@@ -183,7 +268,12 @@ async fn inlay_hints_show_end_points_that_are_not_plain_and_follow_the_setting()
 
     // A pulled setting: the notification carries nothing, the server asks for the section.
     *client.configuration.lock().unwrap() = json!([{"inlayHints": "off"}]);
-    client.notify("workspace/didChangeConfiguration", json!({"settings": null})).await;
+    client
+        .notify(
+            "workspace/didChangeConfiguration",
+            json!({"settings": null}),
+        )
+        .await;
     client.server_request("workspace/configuration").await;
     client.server_request("workspace/inlayHint/refresh").await;
     assert_eq!(inlay_hints(&mut client, SEED_URI).await, vec![]);
@@ -201,7 +291,8 @@ fn cli_preview(path: &std::path::Path) -> Value {
 }
 
 fn temp_folder(name: &str) -> std::path::PathBuf {
-    let folder = std::env::temp_dir().join(format!("sinumerik-lsp-test-{}-{name}", std::process::id()));
+    let folder =
+        std::env::temp_dir().join(format!("sinumerik-lsp-test-{}-{name}", std::process::id()));
     let _ = std::fs::remove_dir_all(&folder);
     std::fs::create_dir_all(&folder).unwrap();
     folder
@@ -210,11 +301,17 @@ fn temp_folder(name: &str) -> std::path::PathBuf {
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
 async fn the_preview_command_matches_the_cli_for_open_and_unopened_files() {
     let mut client = initialized_client().await;
-    let seed_path = std::path::Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/fixtures/examples/turning_seed.mpf"));
+    let seed_path = std::path::Path::new(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/fixtures/examples/turning_seed.mpf"
+    ));
     let seed_uri = file_uri(seed_path);
     client.open(&seed_uri, 1, &seed_text()).await;
     let preview = client
-        .request("workspace/executeCommand", json!({"command": "sinumerik.endpointPreview", "arguments": [{"uri": seed_uri}]}))
+        .request(
+            "workspace/executeCommand",
+            json!({"command": "sinumerik.endpointPreview", "arguments": [{"uri": seed_uri}]}),
+        )
         .await
         .unwrap();
     let expected = cli_preview(seed_path);
@@ -226,10 +323,17 @@ async fn the_preview_command_matches_the_cli_for_open_and_unopened_files() {
     // A file that is not open, in Windows-1252, and only some of its lines.
     let folder = temp_folder("preview");
     let path = folder.join("CLOSED.MPF");
-    std::fs::write(&path, b"N10 G90 G0 X10 Z5 ; \xC4nderung\r\nN20 G91 X5\r\nN30 Z=AC17\r\n").unwrap();
+    std::fs::write(
+        &path,
+        b"N10 G90 G0 X10 Z5 ; \xC4nderung\r\nN20 G91 X5\r\nN30 Z=AC17\r\n",
+    )
+    .unwrap();
     let uri = file_uri(&path);
     let preview = client
-        .request("workspace/executeCommand", json!({"command": "sinumerik.endpointPreview", "arguments": [{"uri": uri}]}))
+        .request(
+            "workspace/executeCommand",
+            json!({"command": "sinumerik.endpointPreview", "arguments": [{"uri": uri}]}),
+        )
         .await
         .unwrap();
     let expected = cli_preview(&path);
@@ -251,7 +355,10 @@ async fn the_preview_command_matches_the_cli_for_open_and_unopened_files() {
         .request("workspace/executeCommand", json!({"command": "sinumerik.endpointPreview", "arguments": [{"uri": file_uri(&folder.join("missing.mpf"))}]}))
         .await
         .unwrap_err();
-    assert!(missing["message"].as_str().unwrap().contains("missing.mpf"), "{missing}");
+    assert!(
+        missing["message"].as_str().unwrap().contains("missing.mpf"),
+        "{missing}"
+    );
     let _ = std::fs::remove_dir_all(&folder);
     client.shutdown().await;
 }
@@ -259,27 +366,49 @@ async fn the_preview_command_matches_the_cli_for_open_and_unopened_files() {
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
 async fn sinumerik_toml_is_found_from_the_documents_folder_upward() {
     let folder = temp_folder("config");
-    std::fs::write(folder.join("sinumerik.toml"), "[diagnostics]\nS101 = \"hint\"\n").unwrap();
+    std::fs::write(
+        folder.join("sinumerik.toml"),
+        "[diagnostics]\nS101 = \"hint\"\n",
+    )
+    .unwrap();
     std::fs::create_dir_all(folder.join("sub")).unwrap();
     let uri = file_uri(&folder.join("sub").join("part.mpf"));
     let mut client = initialized_client().await;
     client.open(&uri, 1, "N10 G0 Z=AC17\n").await;
     let diagnostics = client.diagnostics(&uri, 1).await;
-    let s101 = diagnostics.iter().find(|diagnostic| diagnostic["code"] == "S101").unwrap();
+    let s101 = diagnostics
+        .iter()
+        .find(|diagnostic| diagnostic["code"] == "S101")
+        .unwrap();
     assert_eq!(s101["severity"], 4);
 
     // A configuration file that cannot be read is reported on itself; the program is still checked.
     let broken = temp_folder("broken-config");
-    std::fs::write(broken.join("sinumerik.toml"), "[machine]\nkind = \"drill\"\n").unwrap();
+    std::fs::write(
+        broken.join("sinumerik.toml"),
+        "[machine]\nkind = \"drill\"\n",
+    )
+    .unwrap();
     let uri = file_uri(&broken.join("part.mpf"));
     client.open(&uri, 1, "N10 G0 Z=AC17\n").await;
     let toml_uri = file_uri(&broken.join("sinumerik.toml"));
     let config_diagnostics = client
-        .notification("textDocument/publishDiagnostics", |params| params["uri"] == toml_uri.as_str())
+        .notification("textDocument/publishDiagnostics", |params| {
+            params["uri"] == toml_uri.as_str()
+        })
         .await;
-    assert_eq!(config_diagnostics["diagnostics"][0]["range"]["start"]["line"], 1);
+    assert_eq!(
+        config_diagnostics["diagnostics"][0]["range"]["start"]["line"],
+        1
+    );
     let diagnostics = client.diagnostics(&uri, 1).await;
-    assert_eq!(diagnostics.iter().find(|diagnostic| diagnostic["code"] == "S101").unwrap()["severity"], 1);
+    assert_eq!(
+        diagnostics
+            .iter()
+            .find(|diagnostic| diagnostic["code"] == "S101")
+            .unwrap()["severity"],
+        1
+    );
     let _ = std::fs::remove_dir_all(&folder);
     let _ = std::fs::remove_dir_all(&broken);
     client.shutdown().await;
@@ -288,14 +417,18 @@ async fn sinumerik_toml_is_found_from_the_documents_folder_upward() {
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
 async fn settings_come_from_initialization_options() {
     let mut client = TestClient::in_process();
-    client.initialize(json!({}), json!({"inlayHints": "all"})).await;
+    client
+        .initialize(json!({}), json!({"inlayHints": "all"}))
+        .await;
     client.open(SEED_URI, 1, &seed_text()).await;
     assert_eq!(inlay_hints(&mut client, SEED_URI).await.len(), 4);
     client.shutdown().await;
 }
 
 fn is_warning_about(params: &Value, words: &str) -> bool {
-    params["message"].as_str().is_some_and(|message| message.contains(words))
+    params["message"]
+        .as_str()
+        .is_some_and(|message| message.contains(words))
 }
 
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
@@ -303,19 +436,35 @@ async fn bad_requests_and_notifications_are_answered_or_logged_and_the_server_ke
     let mut client = initialized_client().await;
     let unknown = "file:///nonexistent/unknown.mpf";
     let error = client
-        .request("textDocument/hover", json!({"textDocument": {"uri": unknown}, "position": {"line": 0, "character": 0}}))
+        .request(
+            "textDocument/hover",
+            json!({"textDocument": {"uri": unknown}, "position": {"line": 0, "character": 0}}),
+        )
         .await
         .unwrap_err();
-    assert!(error["message"].as_str().unwrap().contains("not open"), "{error}");
+    assert!(
+        error["message"].as_str().unwrap().contains("not open"),
+        "{error}"
+    );
 
     client.change(unknown, 2, json!([{"text": "N10"}])).await;
-    client.notification("window/logMessage", |params| is_warning_about(params, "not open")).await;
+    client
+        .notification("window/logMessage", |params| {
+            is_warning_about(params, "not open")
+        })
+        .await;
 
     client.open(SEED_URI, 5, &seed_text()).await;
     client.diagnostics(SEED_URI, 5).await;
     // A version going backwards is refused and the text stays.
-    client.change(SEED_URI, 4, json!([{"text": "garbage"}])).await;
-    client.notification("window/logMessage", |params| is_warning_about(params, "not newer")).await;
+    client
+        .change(SEED_URI, 4, json!([{"text": "garbage"}]))
+        .await;
+    client
+        .notification("window/logMessage", |params| {
+            is_warning_about(params, "not newer")
+        })
+        .await;
     assert_eq!(client.document_text(SEED_URI).await, (5, seed_text()));
 
     // Positions past the end are clamped: the last line's end, and a line past the end.
@@ -333,7 +482,10 @@ async fn bad_requests_and_notifications_are_answered_or_logged_and_the_server_ke
 
     // A cancelled request is answered (with its result or as cancelled) and the server goes on.
     let id = client
-        .send_request("textDocument/hover", json!({"textDocument": {"uri": SEED_URI}, "position": {"line": 3, "character": 9}}))
+        .send_request(
+            "textDocument/hover",
+            json!({"textDocument": {"uri": SEED_URI}, "position": {"line": 3, "character": 9}}),
+        )
         .await;
     client.notify("$/cancelRequest", json!({"id": id})).await;
     match client.response(id).await {
@@ -342,17 +494,40 @@ async fn bad_requests_and_notifications_are_answered_or_logged_and_the_server_ke
     }
 
     // Malformed params, an unknown method, an unknown command, and bytes that are not JSON.
-    let error = client.request("textDocument/hover", json!({"position": "nowhere"})).await.unwrap_err();
-    assert_eq!(error["code"], -32602);
-    assert_eq!(client.request("sinumerik/nothing", json!({})).await.unwrap_err()["code"], -32601);
-    let error = client.request("workspace/executeCommand", json!({"command": "rm", "arguments": []})).await.unwrap_err();
-    assert!(error["message"].as_str().unwrap().contains("unknown command"));
     let error = client
-        .request("workspace/executeCommand", json!({"command": "sinumerik.endpointPreview", "arguments": [{"url": 1}]}))
+        .request("textDocument/hover", json!({"position": "nowhere"}))
         .await
         .unwrap_err();
     assert_eq!(error["code"], -32602);
-    client.notify("textDocument/didChange", json!({"textDocument": 17})).await;
+    assert_eq!(
+        client
+            .request("sinumerik/nothing", json!({}))
+            .await
+            .unwrap_err()["code"],
+        -32601
+    );
+    let error = client
+        .request(
+            "workspace/executeCommand",
+            json!({"command": "rm", "arguments": []}),
+        )
+        .await
+        .unwrap_err();
+    assert!(error["message"]
+        .as_str()
+        .unwrap()
+        .contains("unknown command"));
+    let error = client
+        .request(
+            "workspace/executeCommand",
+            json!({"command": "sinumerik.endpointPreview", "arguments": [{"url": 1}]}),
+        )
+        .await
+        .unwrap_err();
+    assert_eq!(error["code"], -32602);
+    client
+        .notify("textDocument/didChange", json!({"textDocument": 17}))
+        .await;
     client.send_raw(&lsp_client::frame(b"{not json")).await;
     client.send_raw(&lsp_client::frame(b"\"\xff\xfe\"")).await;
     client.send_raw(b"Content-Type: nothing\r\n\r\n").await;
@@ -360,18 +535,44 @@ async fn bad_requests_and_notifications_are_answered_or_logged_and_the_server_ke
     client
         .change(SEED_URI, 7, json!([{"range": {"start": {"line": 2, "character": 5}, "end": {"line": 1, "character": 0}}, "text": "x"}]))
         .await;
-    client.notification("window/logMessage", |params| is_warning_about(params, "out of step")).await;
-    client.notification("textDocument/publishDiagnostics", |params| params["uri"] == SEED_URI && params["version"].is_null()).await;
+    client
+        .notification("window/logMessage", |params| {
+            is_warning_about(params, "out of step")
+        })
+        .await;
+    client
+        .notification("textDocument/publishDiagnostics", |params| {
+            params["uri"] == SEED_URI && params["version"].is_null()
+        })
+        .await;
     client.open(SEED_URI, 8, "N10 G0 Z=AC17\n").await;
     let diagnostics = client.diagnostics(SEED_URI, 8).await;
-    assert!(diagnostics.iter().any(|diagnostic| diagnostic["code"] == "S101"));
-    client.notify("textDocument/didClose", json!({"textDocument": {"uri": SEED_URI}})).await;
+    assert!(diagnostics
+        .iter()
+        .any(|diagnostic| diagnostic["code"] == "S101"));
+    client
+        .notify(
+            "textDocument/didClose",
+            json!({"textDocument": {"uri": SEED_URI}}),
+        )
+        .await;
     let cleared = client
-        .notification("textDocument/publishDiagnostics", |params| params["uri"] == SEED_URI && params["version"].is_null())
+        .notification("textDocument/publishDiagnostics", |params| {
+            params["uri"] == SEED_URI && params["version"].is_null()
+        })
         .await;
     assert_eq!(cleared["diagnostics"], json!([]));
-    client.notify("textDocument/didClose", json!({"textDocument": {"uri": SEED_URI}})).await;
-    client.notification("window/logMessage", |params| is_warning_about(params, "was closed but was not open")).await;
+    client
+        .notify(
+            "textDocument/didClose",
+            json!({"textDocument": {"uri": SEED_URI}}),
+        )
+        .await;
+    client
+        .notification("window/logMessage", |params| {
+            is_warning_about(params, "was closed but was not open")
+        })
+        .await;
     client.shutdown().await;
 }
 
@@ -382,21 +583,34 @@ async fn thousands_of_rapid_edits_are_applied_in_order() {
     client.open(uri, 1, "").await;
     let mut expected = String::new();
     let mut random = lsp_client::Random::new(4711);
-    let pieces = ["N10 ", "G1 ", "X", "1", "2", ".", "-", "Z=IC(", ")", " ", "\r\n", "\n", "ä", "😀", "F100", ";"];
+    let pieces = [
+        "N10 ", "G1 ", "X", "1", "2", ".", "-", "Z=IC(", ")", " ", "\r\n", "\n", "ä", "😀", "F100",
+        ";",
+    ];
     let edit_count = 5000;
     for version in 2..2 + edit_count {
         // Mostly typing at a random place; sometimes deleting a few characters.
         let line = random.below(lsp_client::lsp_line_count(&expected)) as u32;
         let column = random.below(lsp_client::lsp_line_length(&expected, line) as usize + 1) as u32;
-        let (end, text) = if random.below(6) == 0 { ((line, column + random.below(4) as u32), "") } else { ((line, column), random.pick(&pieces)) };
+        let (end, text) = if random.below(6) == 0 {
+            ((line, column + random.below(4) as u32), "")
+        } else {
+            ((line, column), random.pick(&pieces))
+        };
         client
             .change(uri, version, json!([{"range": {"start": {"line": line, "character": column}, "end": {"line": end.0, "character": end.1}}, "text": text}]))
             .await;
         lsp_client::apply_edit(&mut expected, (line, column), end, text);
     }
     let last_version = 1 + edit_count;
-    assert_eq!(client.document_text(uri).await, (last_version, expected.clone()));
+    assert_eq!(
+        client.document_text(uri).await,
+        (last_version, expected.clone())
+    );
     let diagnostics = client.diagnostics(uri, last_version).await;
-    assert_eq!(codes(&diagnostics), expected_codes(&expected, ProgramKind::Main));
+    assert_eq!(
+        codes(&diagnostics),
+        expected_codes(&expected, ProgramKind::Main)
+    );
     client.shutdown().await;
 }

@@ -16,8 +16,33 @@ use std::sync::Arc;
 use tower_lsp_server::ls_types::{Position, Range, TextDocumentContentChangeEvent};
 
 const PIECES: &[&str] = &[
-    "N10 ", "G90 ", "G91 ", "G0 ", "G1 ", "X", "Z", "1", "7", ".5", "-", "=IC(", "=AC(", "AC", ")", " ", "\r\n", "\n", "\r",
-    "ä", "😀", "F100", "; Ä 😀 ", "DIAMON ", "G70 ", "AP=45 RP=10 ", "G2 X10 Z5 CR=5 ",
+    "N10 ",
+    "G90 ",
+    "G91 ",
+    "G0 ",
+    "G1 ",
+    "X",
+    "Z",
+    "1",
+    "7",
+    ".5",
+    "-",
+    "=IC(",
+    "=AC(",
+    "AC",
+    ")",
+    " ",
+    "\r\n",
+    "\n",
+    "\r",
+    "ä",
+    "😀",
+    "F100",
+    "; Ä 😀 ",
+    "DIAMON ",
+    "G70 ",
+    "AP=45 RP=10 ",
+    "G2 X10 Z5 CR=5 ",
 ];
 
 const START: &str = "; Kommentar äöü 😀\r\nN10 G90 G0 X20 Z90\r\nN20 G1 X75 Z=IC(-32) F100\r\nN30 G91 X40 Z2\rN40 X-12 Z=AC(17)\nM30\n";
@@ -34,10 +59,16 @@ fn random_edit(random: &mut Random, text: &str) -> ((u32, u32), (u32, u32), Stri
     };
     let new_text = match random.below(5) {
         0 => String::new(),
-        _ => (0..1 + random.below(3)).map(|_| random.pick(PIECES)).collect(),
+        _ => (0..1 + random.below(3))
+            .map(|_| random.pick(PIECES))
+            .collect(),
     };
     // The protocol requires start <= end; clamping both keeps them in order for the oracle too.
-    let (start, end) = if (end.0, end.1) < (line, column) { (end, (line, column)) } else { ((line, column), end) };
+    let (start, end) = if (end.0, end.1) < (line, column) {
+        (end, (line, column))
+    } else {
+        ((line, column), end)
+    };
     (start, end, new_text)
 }
 
@@ -48,7 +79,11 @@ fn change_json(start: (u32, u32), end: (u32, u32), text: &str) -> Value {
 /// The diagnostics of a from-scratch analysis in the protocol's terms, computed here independently.
 fn expected_diagnostics(text: &str) -> Vec<Value> {
     let lines = TextLines::new(text);
-    let analysis = DocumentAnalysis::new(&lines, Arc::new(MachineConfig::default()), ProgramKind::Main);
+    let analysis = DocumentAnalysis::new(
+        &lines,
+        Arc::new(MachineConfig::default()),
+        ProgramKind::Main,
+    );
     let utf16 = |line: &str, byte: usize| line[..byte.min(line.len())].encode_utf16().count();
     analysis
         .diagnostics()
@@ -110,15 +145,26 @@ async fn random_edits_through_the_protocol_equal_a_fresh_analysis() {
             }
             client.change(&uri, version, Value::Array(changes)).await;
         }
-        assert_eq!(client.document_text(&uri).await, (version, expected.clone()), "round {round}");
+        assert_eq!(
+            client.document_text(&uri).await,
+            (version, expected.clone()),
+            "round {round}"
+        );
         let diagnostics = client.diagnostics(&uri, version).await;
-        assert_eq!(published(&diagnostics), expected_diagnostics(&expected), "round {round}: {expected:?}");
+        assert_eq!(
+            published(&diagnostics),
+            expected_diagnostics(&expected),
+            "round {round}: {expected:?}"
+        );
 
         // End points: the preview of the open document equals that of the same text read from disk.
         let path = folder.join(format!("random{round}.mpf"));
         std::fs::write(&path, &expected).unwrap();
         let open = client
-            .request("workspace/executeCommand", json!({"command": "sinumerik.endpointPreview", "arguments": [{"uri": uri}]}))
+            .request(
+                "workspace/executeCommand",
+                json!({"command": "sinumerik.endpointPreview", "arguments": [{"uri": uri}]}),
+            )
             .await
             .unwrap();
         let fresh = client
@@ -126,7 +172,12 @@ async fn random_edits_through_the_protocol_equal_a_fresh_analysis() {
             .await
             .unwrap();
         assert_eq!(open["moves"], fresh["moves"], "round {round}: {expected:?}");
-        client.notify("textDocument/didClose", json!({"textDocument": {"uri": uri}})).await;
+        client
+            .notify(
+                "textDocument/didClose",
+                json!({"textDocument": {"uri": uri}}),
+            )
+            .await;
     }
     let _ = std::fs::remove_dir_all(&folder);
     client.shutdown().await;
@@ -134,7 +185,9 @@ async fn random_edits_through_the_protocol_equal_a_fresh_analysis() {
 
 fn core_lines(text: &str) -> Vec<String> {
     let lines = TextLines::new(text);
-    (0..lines.line_count()).map(|index| lines.line(index).into_owned()).collect()
+    (0..lines.line_count())
+        .map(|index| lines.line(index).into_owned())
+        .collect()
 }
 
 #[test]
@@ -144,36 +197,77 @@ fn the_lines_an_edit_touched_are_exact_and_updating_by_them_equals_a_fresh_analy
     for round in 0..60 {
         let mut document = DocumentText::new(START, 1);
         let mut expected = START.to_string();
-        let mut analysis = DocumentAnalysis::new(&RopeLines::new(&document.rope), config.clone(), ProgramKind::Main);
+        let mut analysis = DocumentAnalysis::new(
+            &RopeLines::new(&document.rope),
+            config.clone(),
+            ProgramKind::Main,
+        );
         for step in 0..30 {
             let old_lines = core_lines(&expected);
             let (start, end, new_text) = random_edit(&mut random, &expected);
             apply_edit(&mut expected, start, end, &new_text);
             let change = TextDocumentContentChangeEvent {
-                range: Some(Range::new(Position::new(start.0, start.1), Position::new(end.0, end.1))),
+                range: Some(Range::new(
+                    Position::new(start.0, start.1),
+                    Position::new(end.0, end.1),
+                )),
                 range_length: None,
                 text: new_text.clone(),
             };
             let next_version = document.version + 1;
-            let touched = apply_changes(&mut document, &[change], next_version, PositionEncoding::Utf16)
-                .unwrap()
-                .unwrap();
-            assert_eq!(document.rope.to_string(), expected, "round {round} step {step}");
+            let touched = apply_changes(
+                &mut document,
+                &[change],
+                next_version,
+                PositionEncoding::Utf16,
+            )
+            .unwrap()
+            .unwrap();
+            assert_eq!(
+                document.rope.to_string(),
+                expected,
+                "round {round} step {step}"
+            );
             let new_lines = core_lines(&expected);
             let line_change = touched.to_core(old_lines.len(), new_lines.len());
             let context = format!("round {round} step {step}: {line_change:?} {start:?}..{end:?} {new_text:?}\n{old_lines:?}\n{new_lines:?}");
             // Lines before the range and after it are unchanged; the count adds up.
-            assert_eq!(old_lines.len() - line_change.removed, new_lines.len() - line_change.inserted, "{context}");
-            assert_eq!(old_lines[..line_change.first], new_lines[..line_change.first], "{context}");
-            assert_eq!(old_lines[line_change.first + line_change.removed..], new_lines[line_change.first + line_change.inserted..], "{context}");
+            assert_eq!(
+                old_lines.len() - line_change.removed,
+                new_lines.len() - line_change.inserted,
+                "{context}"
+            );
+            assert_eq!(
+                old_lines[..line_change.first],
+                new_lines[..line_change.first],
+                "{context}"
+            );
+            assert_eq!(
+                old_lines[line_change.first + line_change.removed..],
+                new_lines[line_change.first + line_change.inserted..],
+                "{context}"
+            );
             // Exact: no more lines than the edit's own lines, plus one for a line end it joined.
             let edit_lines = (end.0 - start.0) as usize + 1;
             assert!(line_change.removed <= edit_lines + 1, "{context}");
             let source = RopeLines::new(&document.rope);
-            analysis.update(&source, line_change.first, line_change.removed, line_change.inserted);
-            let fresh = DocumentAnalysis::new(&TextLines::new(&expected), config.clone(), ProgramKind::Main);
+            analysis.update(
+                &source,
+                line_change.first,
+                line_change.removed,
+                line_change.inserted,
+            );
+            let fresh = DocumentAnalysis::new(
+                &TextLines::new(&expected),
+                config.clone(),
+                ProgramKind::Main,
+            );
             assert_eq!(analysis.diagnostics(), fresh.diagnostics(), "{context}");
-            assert_eq!(analysis.moves(&source, 0..usize::MAX), fresh.moves(&TextLines::new(&expected), 0..usize::MAX), "{context}");
+            assert_eq!(
+                analysis.moves(&source, 0..usize::MAX),
+                fresh.moves(&TextLines::new(&expected), 0..usize::MAX),
+                "{context}"
+            );
         }
     }
 }

@@ -33,13 +33,25 @@ async fn the_binary_serves_the_seed_example_over_stdio() {
         .change(&uri, 2, json!([{"range": {"start": {"line": 3, "character": 12}, "end": {"line": 3, "character": 13}}, "text": ""}]))
         .await;
     let diagnostics = client.diagnostics(&uri, 2).await;
-    assert!(diagnostics.iter().any(|diagnostic| diagnostic["code"] == "S101"), "{diagnostics:?}");
+    assert!(
+        diagnostics
+            .iter()
+            .any(|diagnostic| diagnostic["code"] == "S101"),
+        "{diagnostics:?}"
+    );
 
     let hints = client
         .request("textDocument/inlayHint", json!({"textDocument": {"uri": uri}, "range": {"start": {"line": 0, "character": 0}, "end": {"line": 9, "character": 0}}}))
         .await
         .unwrap();
-    assert!(hints.as_array().unwrap().iter().any(|hint| hint["label"] == "⟶ X103 Z17"), "{hints}");
+    assert!(
+        hints
+            .as_array()
+            .unwrap()
+            .iter()
+            .any(|hint| hint["label"] == "⟶ X103 Z17"),
+        "{hints}"
+    );
     assert_eq!(client.shutdown().await, Some(0));
 }
 
@@ -52,8 +64,20 @@ async fn serve_and_stdio_arguments_start_the_server_and_preview_reads_files_from
             .request("workspace/executeCommand", json!({"command": "sinumerik.endpointPreview", "arguments": [{"uri": file_uri(&seed_path()), "startLine": 4}]}))
             .await
             .unwrap();
-        let ends: Vec<&Value> = preview["moves"].as_array().unwrap().iter().map(|movement| &movement["end"]).collect();
-        assert_eq!(ends, vec![&json!({"X": 115.0, "Z": 60.0}), &json!({"X": 103.0, "Z": 17.0})], "{args:?}");
+        let ends: Vec<&Value> = preview["moves"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|movement| &movement["end"])
+            .collect();
+        assert_eq!(
+            ends,
+            vec![
+                &json!({"X": 115.0, "Z": 60.0}),
+                &json!({"X": 103.0, "Z": 17.0})
+            ],
+            "{args:?}"
+        );
         assert_eq!(client.shutdown().await, Some(0), "{args:?}");
     }
 }

@@ -124,7 +124,8 @@ fn severity(severity: Severity) -> DiagnosticSeverity {
 }
 
 /// The body of a `textDocument/publishDiagnostics` notification for diagnostics sorted by line,
-/// reading each line's text once from `line_text`. Written directly as JSON text, in the shape of
+/// reading each line's text once from `line_text` (not at all when `all_ascii` says the document is
+/// ASCII, where byte offsets are the columns in both encodings). Written directly as JSON text, in the shape of
 /// [`diagnostic_to_lsp`]: tens of thousands of diagnostics are published after every edit of a large
 /// program, and building LSP values first took several times as long.
 pub fn publish_diagnostics_body<'a>(
@@ -132,20 +133,36 @@ pub fn publish_diagnostics_body<'a>(
     version: Option<i32>,
     diagnostics: &[LineDiagnostic],
     mut line_text: impl FnMut(usize) -> Cow<'a, str>,
+    all_ascii: bool,
     encoding: PositionEncoding,
 ) -> Vec<u8> {
     use std::io::Write;
     let mut body = Vec::with_capacity(256 + diagnostics.len() * 200);
-    body.extend_from_slice(br#"{"jsonrpc":"2.0","method":"textDocument/publishDiagnostics","params":{"uri":"#);
+    body.extend_from_slice(
+        br#"{"jsonrpc":"2.0","method":"textDocument/publishDiagnostics","params":{"uri":"#,
+    );
     let _ = serde_json::to_writer(&mut body, uri.as_str());
     body.extend_from_slice(br#","diagnostics":["#);
     let mut current: Option<(usize, Cow<'a, str>)> = None;
     for (index, item) in diagnostics.iter().enumerate() {
-        if current.as_ref().map(|(line_idx, _)| *line_idx) != Some(item.line) {
-            current = Some((item.line, line_text(item.line)));
-        }
-        let line = current.as_ref().map(|(_, text)| text.as_ref()).unwrap_or("");
-        let range = span_to_range(item.line, line, item.diagnostic.span, encoding);
+        let range = if all_ascii {
+            let line_number = u32::try_from(item.line).unwrap_or(u32::MAX);
+            let span = item.diagnostic.span;
+            let column = |byte: usize| u32::try_from(byte).unwrap_or(u32::MAX);
+            Range::new(
+                Position::new(line_number, column(span.start())),
+                Position::new(line_number, column(span.end().max(span.start()))),
+            )
+        } else {
+            if current.as_ref().map(|(line_idx, _)| *line_idx) != Some(item.line) {
+                current = Some((item.line, line_text(item.line)));
+            }
+            let line = current
+                .as_ref()
+                .map(|(_, text)| text.as_ref())
+                .unwrap_or("");
+            span_to_range(item.line, line, item.diagnostic.span, encoding)
+        };
         let severity = match item.diagnostic.severity {
             Severity::Error => 1,
             Severity::Warning => 2,
@@ -193,7 +210,11 @@ pub fn diagnostic_to_lsp(
 }
 
 /// The edits of a diagnostic's fix, as LSP text edits on the diagnostic's line.
-pub fn fix_edits(item: &LineDiagnostic, line: &str, encoding: PositionEncoding) -> Vec<ls_types::TextEdit> {
+pub fn fix_edits(
+    item: &LineDiagnostic,
+    line: &str,
+    encoding: PositionEncoding,
+) -> Vec<ls_types::TextEdit> {
     item.diagnostic
         .fix
         .iter()
@@ -214,17 +235,28 @@ mod tests {
         let line = "; ä 😀 X1";
         let byte = line.find('X').unwrap();
         assert_eq!(byte_to_character(line, byte, PositionEncoding::Utf16), 7);
-        assert_eq!(byte_to_character(line, byte, PositionEncoding::Utf8), byte as u32);
+        assert_eq!(
+            byte_to_character(line, byte, PositionEncoding::Utf8),
+            byte as u32
+        );
         assert_eq!(character_to_byte(line, 7, PositionEncoding::Utf16), byte);
         // Inside the surrogate pair: the start of the emoji.
-        assert_eq!(character_to_byte(line, 5, PositionEncoding::Utf16), line.find('😀').unwrap());
-        assert_eq!(character_to_byte(line, 999, PositionEncoding::Utf16), line.len());
+        assert_eq!(
+            character_to_byte(line, 5, PositionEncoding::Utf16),
+            line.find('😀').unwrap()
+        );
+        assert_eq!(
+            character_to_byte(line, 999, PositionEncoding::Utf16),
+            line.len()
+        );
     }
 
     #[test]
     fn positions_clamp_to_the_line_and_the_document() {
         let rope = Rope::from_str("ab\r\ncd😀e\n");
-        let at = |line, character, encoding| position_to_char(&rope, Position::new(line, character), encoding);
+        let at = |line, character, encoding| {
+            position_to_char(&rope, Position::new(line, character), encoding)
+        };
         assert_eq!(at(0, 99, PositionEncoding::Utf16), 2);
         assert_eq!(at(1, 4, PositionEncoding::Utf16), 4 + 3);
         assert_eq!(at(1, 3, PositionEncoding::Utf16), 4 + 2);
@@ -239,27 +271,73 @@ mod tests {
         use crate::diagnostics::{Code, Diagnostic};
         let lines = ["N10 G0 Z=AC17 ; \"quoted\" ä", "N20 😀 X\t1"];
         let diagnostics = vec![
-            LineDiagnostic { line: 0, diagnostic: Diagnostic::new(Code::ModifierWithoutParentheses, Span::new(9, 13), "write `AC(17)` \"now\"\n") },
-            LineDiagnostic { line: 1, diagnostic: Diagnostic::new(Code::UnexpectedCharacter, Span::new(4, 8), "ünexpected") },
+            LineDiagnostic {
+                line: 0,
+                diagnostic: Diagnostic::new(
+                    Code::ModifierWithoutParentheses,
+                    Span::new(9, 13),
+                    "write `AC(17)` \"now\"\n",
+                ),
+            },
+            LineDiagnostic {
+                line: 1,
+                diagnostic: Diagnostic::new(
+                    Code::UnexpectedCharacter,
+                    Span::new(4, 8),
+                    "ünexpected",
+                ),
+            },
         ];
         let uri: ls_types::Uri = "file:///a%20b/c.mpf".parse().unwrap();
         for encoding in [PositionEncoding::Utf8, PositionEncoding::Utf16] {
-            let body = publish_diagnostics_body(&uri, Some(7), &diagnostics, |index| Cow::Borrowed(lines[index]), encoding);
+            let body = publish_diagnostics_body(
+                &uri,
+                Some(7),
+                &diagnostics,
+                |index| Cow::Borrowed(lines[index]),
+                false,
+                encoding,
+            );
             let written: serde_json::Value = serde_json::from_slice(&body).unwrap();
             let expected = ls_types::PublishDiagnosticsParams {
                 uri: uri.clone(),
-                diagnostics: diagnostics.iter().map(|item| diagnostic_to_lsp(item, lines[item.line], encoding)).collect(),
+                diagnostics: diagnostics
+                    .iter()
+                    .map(|item| diagnostic_to_lsp(item, lines[item.line], encoding))
+                    .collect(),
                 version: Some(7),
             };
             assert_eq!(written["params"], serde_json::to_value(&expected).unwrap());
             assert_eq!(written["method"], "textDocument/publishDiagnostics");
         }
+        // An ASCII document needs no line text: the same ranges come from the spans alone.
+        let ascii_lines = ["N10 G0 Z=AC17 ; x", "N20 ?? X1"];
+        let from_text = publish_diagnostics_body(
+            &uri,
+            None,
+            &diagnostics,
+            |index| Cow::Borrowed(ascii_lines[index]),
+            false,
+            PositionEncoding::Utf16,
+        );
+        let from_spans = publish_diagnostics_body(
+            &uri,
+            None,
+            &diagnostics,
+            |_| unreachable!("no line is read"),
+            true,
+            PositionEncoding::Utf16,
+        );
+        assert_eq!(from_text, from_spans);
     }
 
     #[test]
     fn utf8_is_chosen_only_when_offered() {
         assert_eq!(PositionEncoding::negotiate(None), PositionEncoding::Utf16);
         let offered = [PositionEncodingKind::UTF16, PositionEncodingKind::UTF8];
-        assert_eq!(PositionEncoding::negotiate(Some(&offered)), PositionEncoding::Utf8);
+        assert_eq!(
+            PositionEncoding::negotiate(Some(&offered)),
+            PositionEncoding::Utf8
+        );
     }
 }

@@ -23,7 +23,9 @@ use tower_lsp_server::ls_types::{TextDocumentContentChangeEvent, Uri};
 /// Locks a mutex, also after a panic elsewhere poisoned it: the data behind our locks stays
 /// consistent at every unlock, and the server must keep serving.
 pub fn lock<T>(mutex: &Mutex<T>) -> MutexGuard<'_, T> {
-    mutex.lock().unwrap_or_else(|poisoned| poisoned.into_inner())
+    mutex
+        .lock()
+        .unwrap_or_else(|poisoned| poisoned.into_inner())
 }
 
 /// What changed since the analysis last looked at the text.
@@ -199,7 +201,8 @@ impl OpenDocument {
         let updated = match (slot.as_mut(), pending) {
             (Some(analysed), Pending::Lines(change)) if Arc::ptr_eq(&analysed.config, &config) => {
                 let source = RopeLines::new(&rope);
-                let line_change = change.to_core(core_line_count(&analysed.rope), source.line_count());
+                let line_change =
+                    change.to_core(core_line_count(&analysed.rope), source.line_count());
                 analysed.analysis.update(
                     &source,
                     line_change.first,
@@ -244,6 +247,7 @@ impl OpenDocument {
                         Some(analysed.version),
                         diagnostics,
                         |line_idx| lines.line(line_idx),
+                        analysed.rope.len_bytes() == analysed.rope.len_chars(),
                         context.encoding,
                     );
                     (analysed.revision, body, diagnostics.len(), analysed_in)
@@ -251,7 +255,12 @@ impl OpenDocument {
             }));
             if let Ok(Some((_, _, count, analysed_in))) = &result {
                 log::slow_with_sender(
-                    || format!("analysis ({} ms) and writing of {count} diagnostics", analysed_in.as_millis()),
+                    || {
+                        format!(
+                            "analysis ({} ms) and writing of {count} diagnostics",
+                            analysed_in.as_millis()
+                        )
+                    },
                     started.elapsed(),
                     &context.outgoing,
                 );

@@ -54,7 +54,11 @@ fn preview(
 }
 
 /// The preview of an open document, from its up-to-date analysis.
-pub fn preview_open(analysed: &Analysed, label: &str, lines: LineSelection) -> Result<Value, String> {
+pub fn preview_open(
+    analysed: &Analysed,
+    label: &str,
+    lines: LineSelection,
+) -> Result<Value, String> {
     preview(&analysed.analysis, &analysed.lines(), label, lines)
 }
 

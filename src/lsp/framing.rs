@@ -44,7 +44,11 @@ async fn next_body<R: AsyncRead + Unpin>(reader: &mut BufReader<R>) -> Option<Op
     loop {
         let mut line = Vec::new();
         // A header line is short; a "line" of megabytes is garbage and is read in bounded pieces.
-        let read = (&mut *reader).take(64 * 1024).read_until(b'\n', &mut line).await.ok()?;
+        let read = (&mut *reader)
+            .take(64 * 1024)
+            .read_until(b'\n', &mut line)
+            .await
+            .ok()?;
         if read == 0 {
             return None;
         }
@@ -64,19 +68,35 @@ async fn next_body<R: AsyncRead + Unpin>(reader: &mut BufReader<R>) -> Option<Op
         }
     }
     let Some(length) = content_length else {
-        log::to_stderr(MessageType::WARNING, "a message without a valid Content-Length header was dropped");
+        log::to_stderr(
+            MessageType::WARNING,
+            "a message without a valid Content-Length header was dropped",
+        );
         return Some(None);
     };
     if length > MAX_MESSAGE_LENGTH {
-        log::to_stderr(MessageType::WARNING, &format!("a message of {length} bytes was skipped (the limit is {MAX_MESSAGE_LENGTH})"));
-        let skipped = tokio::io::copy(&mut (&mut *reader).take(length as u64), &mut tokio::io::sink()).await.ok()?;
+        log::to_stderr(
+            MessageType::WARNING,
+            &format!("a message of {length} bytes was skipped (the limit is {MAX_MESSAGE_LENGTH})"),
+        );
+        let skipped = tokio::io::copy(
+            &mut (&mut *reader).take(length as u64),
+            &mut tokio::io::sink(),
+        )
+        .await
+        .ok()?;
         return (skipped == length as u64).then_some(None);
     }
     let mut body = vec![0; length];
     reader.read_exact(&mut body).await.ok()?;
     // The framework reads the body as a `str`, so invalid UTF-8 would stop it as well.
-    if std::str::from_utf8(&body).is_err() || serde_json::from_slice::<serde::de::IgnoredAny>(&body).is_err() {
-        log::to_stderr(MessageType::WARNING, &format!("a message of {length} bytes that is not JSON was dropped"));
+    if std::str::from_utf8(&body).is_err()
+        || serde_json::from_slice::<serde::de::IgnoredAny>(&body).is_err()
+    {
+        log::to_stderr(
+            MessageType::WARNING,
+            &format!("a message of {length} bytes that is not JSON was dropped"),
+        );
         return Some(None);
     }
     Some(Some(body))

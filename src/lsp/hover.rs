@@ -2,7 +2,9 @@
 //! the function of that group in effect before the block; anywhere else in a block, the modal state
 //! in effect and the block's end point. Built from the analysis's `BlockReport` only.
 
-use crate::analysis::document::{BlockReport, LineSource, ResolutionMode, StateSummary, WordResolution};
+use crate::analysis::document::{
+    BlockReport, LineSource, ResolutionMode, StateSummary, WordResolution,
+};
 use crate::config::{AxisKind, MachineConfig};
 use crate::diagnostics::Span;
 use crate::lsp::convert::{character_to_byte, span_to_range, PositionEncoding};
@@ -33,7 +35,10 @@ pub fn hover(analysed: &Analysed, position: Position, encoding: PositionEncoding
     let word = word_at(&line_words, offset);
     let (markdown, span) = match word {
         Some(word) => match axis_of(word, config) {
-            Some(axis) => (axis_hover(word, &axis, &line_words, &report, config), Some(word.span.clone())),
+            Some(axis) => (
+                axis_hover(word, &axis, &line_words, &report, config),
+                Some(word.span.clone()),
+            ),
             None => match gcode_of(word) {
                 Some(code) => (gcode_hover(code, &report), Some(word.span.clone())),
                 None => (block_hover(&report, config), None),
@@ -46,7 +51,8 @@ pub fn hover(analysed: &Analysed, position: Position, encoding: PositionEncoding
             kind: MarkupKind::Markdown,
             value: markdown,
         }),
-        range: span.map(|span| span_to_range(line_idx, &line, Span::new(span.start, span.end), encoding)),
+        range: span
+            .map(|span| span_to_range(line_idx, &line, Span::new(span.start, span.end), encoding)),
     })
 }
 
@@ -79,11 +85,17 @@ fn units_label(config: &MachineConfig, kind: Option<AxisKind>) -> &'static str {
     }
 }
 
-fn axis_hover(word: &Word<'_>, axis: &str, line_words: &[Word<'_>], report: &BlockReport, config: &MachineConfig) -> String {
-    let from_core = report
-        .words
-        .iter()
-        .find(|resolution| resolution.span.start() <= word.span.start && word.span.start < resolution.span.end().max(resolution.span.start() + 1));
+fn axis_hover(
+    word: &Word<'_>,
+    axis: &str,
+    line_words: &[Word<'_>],
+    report: &BlockReport,
+    config: &MachineConfig,
+) -> String {
+    let from_core = report.words.iter().find(|resolution| {
+        resolution.span.start() <= word.span.start
+            && word.span.start < resolution.span.end().max(resolution.span.start() + 1)
+    });
     let resolution = match from_core {
         Some(resolution) => resolution.clone(),
         None => resolution_from_movement(word, axis, line_words, report, config),
@@ -97,8 +109,19 @@ fn axis_hover(word: &Word<'_>, axis: &str, line_words: &[Word<'_>], report: &Blo
 
 /// How a word resolves, worked out from the block's move when the analysis gave no per-word
 /// report: the arithmetic shown is checked against the analysis's end point, never assumed.
-fn resolution_from_movement(word: &Word<'_>, axis: &str, line_words: &[Word<'_>], report: &BlockReport, config: &MachineConfig) -> WordResolution {
-    let lookup = |values: &[(std::sync::Arc<str>, f64)]| values.iter().find(|(name, _)| &**name == axis).map(|(_, value)| *value);
+fn resolution_from_movement(
+    word: &Word<'_>,
+    axis: &str,
+    line_words: &[Word<'_>],
+    report: &BlockReport,
+    config: &MachineConfig,
+) -> WordResolution {
+    let lookup = |values: &[(std::sync::Arc<str>, f64)]| {
+        values
+            .iter()
+            .find(|(name, _)| &**name == axis)
+            .map(|(_, value)| *value)
+    };
     let movement = report.movement.as_ref();
     let machine_block = line_words.iter().any(|other| {
         let name = other.upper_name();
@@ -129,10 +152,9 @@ fn resolution_from_movement(word: &Word<'_>, axis: &str, line_words: &[Word<'_>]
     let end = movement.and_then(|movement| lookup(&movement.end));
     let start = movement.and_then(|movement| lookup(&movement.start));
     let unknown_reason = end.is_none().then(|| {
-        if matches!(mode, ResolutionMode::Incremental) || matches!(mode, ResolutionMode::Override(Modifier::Ic)) {
-            if start.is_none() {
-                return "the move is incremental and the axis position before the block is not known".to_string();
-            }
+        if is_incremental(mode) && start.is_none() {
+            return "the move is incremental and the axis position before the block is not known"
+                .to_string();
         }
         "the analysis cannot follow this value here (see the block's findings)".to_string()
     });
@@ -142,10 +164,13 @@ fn resolution_from_movement(word: &Word<'_>, axis: &str, line_words: &[Word<'_>]
         programmed: word.literal(),
         mode,
         unit_factor,
-        read_as_diameter: axis_kind == Some(AxisKind::Transverse) && movement.is_some_and(|movement| movement.transverse_as_diameter),
+        read_as_diameter: axis_kind == Some(AxisKind::Transverse)
+            && movement.is_some_and(|movement| movement.transverse_as_diameter),
         start,
         end,
-        machine: movement.and_then(|movement| movement.machine.as_deref()).and_then(lookup),
+        machine: movement
+            .and_then(|movement| movement.machine.as_deref())
+            .and_then(lookup),
         unknown_reason,
     }
 }
@@ -154,7 +179,9 @@ fn is_incremental(mode: ResolutionMode) -> bool {
     matches!(
         mode,
         ResolutionMode::Incremental
-            | ResolutionMode::Override(Modifier::Ic | Modifier::Dic | Modifier::Ric | Modifier::Cic)
+            | ResolutionMode::Override(
+                Modifier::Ic | Modifier::Dic | Modifier::Ric | Modifier::Cic
+            )
     )
 }
 
@@ -164,8 +191,12 @@ fn mode_note(mode: ResolutionMode, in_effect: &StateSummary) -> String {
     match mode {
         ResolutionMode::Absolute => "G90: absolute".to_string(),
         ResolutionMode::Incremental => "G91: incremental".to_string(),
-        ResolutionMode::Machine => "G53/G153/SUPA: a machine position for this block only".to_string(),
-        ResolutionMode::Unknown => "G90 or G91 is inherited from the caller and not known here".to_string(),
+        ResolutionMode::Machine => {
+            "G53/G153/SUPA: a machine position for this block only".to_string()
+        }
+        ResolutionMode::Unknown => {
+            "G90 or G91 is inherited from the caller and not known here".to_string()
+        }
         ResolutionMode::Override(modifier) => {
             let what = match modifier {
                 Modifier::Ac => "absolute for this block only",
@@ -183,14 +214,21 @@ fn mode_note(mode: ResolutionMode, in_effect: &StateSummary) -> String {
                 Modifier::Cacp => "coded position, positive direction",
                 Modifier::Cacn => "coded position, negative direction",
             };
-            format!("{}: {what}; {modal} stays active", modifier.as_str().to_ascii_uppercase())
+            format!(
+                "{}: {what}; {modal} stays active",
+                modifier.as_str().to_ascii_uppercase()
+            )
         }
     }
 }
 
 /// The explanation of one resolved word, e.g. `Z = 90.000 + (-32.000) = **58.000** mm (IC: ...)`;
 /// `in_effect` is the modal state that applies to the block's words.
-pub fn explain_resolution(resolution: &WordResolution, in_effect: &StateSummary, config: &MachineConfig) -> String {
+pub fn explain_resolution(
+    resolution: &WordResolution,
+    in_effect: &StateSummary,
+    config: &MachineConfig,
+) -> String {
     let axis = &resolution.axis;
     let axis_kind = config.axis(axis).map(|axis| axis.kind);
     let unit = units_label(config, axis_kind);
@@ -206,22 +244,41 @@ pub fn explain_resolution(resolution: &WordResolution, in_effect: &StateSummary,
     };
     let factor = resolution.unit_factor.unwrap_or(1.0);
     let converted = resolution.programmed.map(|programmed| programmed * factor);
-    let inch = resolution.unit_factor.is_some_and(|factor| !same(factor, 1.0));
+    let inch = resolution
+        .unit_factor
+        .is_some_and(|factor| !same(factor, 1.0));
     // The programmed value as a term: `1.000 in (25.400 mm)` under G70, else the value itself.
     let programmed_term = |programmed: f64| -> String {
         if inch {
             let program_unit = if config.metric { "in" } else { "mm" };
-            format!("{} {program_unit} ({} {unit})", term(programmed), fixed(programmed * factor))
+            format!(
+                "{} {program_unit} ({} {unit})",
+                term(programmed),
+                fixed(programmed * factor)
+            )
         } else {
             term(programmed)
         }
     };
     let formula = match (resolution.programmed, converted, resolution.start) {
-        (Some(programmed), Some(converted), Some(start)) if is_incremental(resolution.mode) && same(start + converted, end) => {
-            Some(format!("{axis} = {} + {} = **{}** {unit}", term(start), programmed_term(programmed), fixed(end)))
+        (Some(programmed), Some(converted), Some(start))
+            if is_incremental(resolution.mode) && same(start + converted, end) =>
+        {
+            Some(format!(
+                "{axis} = {} + {} = **{}** {unit}",
+                term(start),
+                programmed_term(programmed),
+                fixed(end)
+            ))
         }
-        (Some(programmed), Some(converted), _) if !is_incremental(resolution.mode) && same(converted, end) && inch => {
-            Some(format!("{axis} = {} = **{}** {unit}", programmed_term(programmed), fixed(end)))
+        (Some(programmed), Some(converted), _)
+            if !is_incremental(resolution.mode) && same(converted, end) && inch =>
+        {
+            Some(format!(
+                "{axis} = {} = **{}** {unit}",
+                programmed_term(programmed),
+                fixed(end)
+            ))
         }
         _ => None,
     };
@@ -231,7 +288,12 @@ pub fn explain_resolution(resolution: &WordResolution, in_effect: &StateSummary,
         }
         None => match resolution.start {
             Some(start) if is_incremental(resolution.mode) && !same(start, end) => {
-                let _ = write!(text, "{axis}: {} → **{}** {unit} ({note})", fixed(start), fixed(end));
+                let _ = write!(
+                    text,
+                    "{axis}: {} → **{}** {unit} ({note})",
+                    fixed(start),
+                    fixed(end)
+                );
             }
             _ => {
                 let _ = write!(text, "{axis} = **{}** {unit} ({note})", fixed(end));
@@ -239,12 +301,25 @@ pub fn explain_resolution(resolution: &WordResolution, in_effect: &StateSummary,
         },
     }
     if resolution.read_as_diameter {
-        let _ = write!(text, "\n\nDiameter {} {unit}, radius {} {unit}", fixed(end), fixed(end / 2.0));
+        let _ = write!(
+            text,
+            "\n\nDiameter {} {unit}, radius {} {unit}",
+            fixed(end),
+            fixed(end / 2.0)
+        );
     }
     if let Some(machine) = resolution.machine {
-        let shown_machine = if resolution.read_as_diameter { machine * 2.0 } else { machine };
+        let shown_machine = if resolution.read_as_diameter {
+            machine * 2.0
+        } else {
+            machine
+        };
         if !same(shown_machine, end) {
-            let radius_note = if axis_kind == Some(AxisKind::Transverse) { " (radius)" } else { "" };
+            let radius_note = if axis_kind == Some(AxisKind::Transverse) {
+                " (radius)"
+            } else {
+                ""
+            };
             let _ = write!(
                 text,
                 "\n\nAfter the programmable frame (machine coordinates): {axis} = **{}** {unit}{radius_note}",
@@ -283,12 +358,18 @@ fn gcode_hover(code: GCode, report: &BlockReport) -> String {
     } else {
         "non-modal: acts in this block only"
     };
-    let _ = write!(text, "\n\nGroup {group} ({}), {modality}.", gcode_help::group_name(group));
+    let _ = write!(
+        text,
+        "\n\nGroup {group} ({}), {modality}.",
+        gcode_help::group_name(group)
+    );
     match group_value(group, &report.before) {
         Some(Some(value)) => {
             let _ = write!(text, " Before this block: **{value}**.");
         }
-        Some(None) => text.push_str(" Before this block: **unknown** (inherited from the caller, or lost)."),
+        Some(None) => {
+            text.push_str(" Before this block: **unknown** (inherited from the caller, or lost).")
+        }
         None => {}
     }
     text
@@ -299,7 +380,10 @@ fn or_unknown(value: &Option<String>) -> &str {
 }
 
 fn axes_text(values: &[(std::sync::Arc<str>, f64)], unknown: &[std::sync::Arc<str>]) -> String {
-    let mut parts: Vec<String> = values.iter().map(|(name, value)| format!("{name}{}", short(*value))).collect();
+    let mut parts: Vec<String> = values
+        .iter()
+        .map(|(name, value)| format!("{name}{}", short(*value)))
+        .collect();
     parts.extend(
         unknown
             .iter()
@@ -323,7 +407,9 @@ fn block_hover(report: &BlockReport, config: &MachineConfig) -> String {
         Some(false) => "active",
         None => "unknown",
     };
-    let feed = before.feed.map_or_else(|| "not programmed or unknown".to_string(), short);
+    let feed = before
+        .feed
+        .map_or_else(|| "not programmed or unknown".to_string(), short);
     let _ = write!(
         text,
         "- motion {} · plane {} · units {} · {}\n- diameter mode {} · work offset {}\n- pole {pole} · programmable frame {frame} · feed {feed}",
@@ -336,9 +422,19 @@ fn block_hover(report: &BlockReport, config: &MachineConfig) -> String {
     );
     match &report.movement {
         Some(movement) => {
-            let _ = write!(text, "\n\n**End point** ({}): {}", movement.motion, axes_text(&movement.end, &movement.uncertain));
+            let _ = write!(
+                text,
+                "\n\n**End point** ({}): {}",
+                movement.motion,
+                axes_text(&movement.end, &movement.uncertain)
+            );
             if let Some(machine) = &movement.machine {
-                if machine_differs(machine, &movement.end, movement.transverse_as_diameter, config) {
+                if machine_differs(
+                    machine,
+                    &movement.end,
+                    movement.transverse_as_diameter,
+                    config,
+                ) {
                     let _ = write!(text, "\n\nMachine coordinates (after the programmable frame, radius on transverse axes): {}", axes_text(machine, &[]));
                 }
             }
@@ -359,8 +455,14 @@ pub fn machine_differs(
     config: &MachineConfig,
 ) -> bool {
     machine.iter().any(|(name, machine_value)| {
-        let transverse = config.axis(name).is_some_and(|axis| axis.kind == AxisKind::Transverse);
-        let shown = if transverse && transverse_as_diameter { machine_value * 2.0 } else { *machine_value };
+        let transverse = config
+            .axis(name)
+            .is_some_and(|axis| axis.kind == AxisKind::Transverse);
+        let shown = if transverse && transverse_as_diameter {
+            machine_value * 2.0
+        } else {
+            *machine_value
+        };
         end.iter()
             .find(|(end_name, _)| end_name == name)
             .is_some_and(|(_, end_value)| !same(shown, *end_value))

@@ -24,7 +24,9 @@ pub fn inlay_hints(
     }
     let lines = analysed.lines();
     let first = range.start.line as usize;
-    let last = (range.end.line as usize).saturating_add(1).min(lines.line_count());
+    let last = (range.end.line as usize)
+        .saturating_add(1)
+        .min(lines.line_count());
     if first >= last {
         return Vec::new();
     }
@@ -45,7 +47,8 @@ pub fn inlay_hints(
                 kind: None,
                 text_edits: None,
                 tooltip: Some(InlayHintTooltip::String(
-                    "Resolved end point of this block in program coordinates (? = unknown)".to_string(),
+                    "Resolved end point of this block in program coordinates (? = unknown)"
+                        .to_string(),
                 )),
                 padding_left: Some(true),
                 padding_right: None,
@@ -72,7 +75,12 @@ pub fn label(movement: &Move, config: &MachineConfig) -> String {
     }
     let mut label = format!("⟶ {}", parts.join(" "));
     if let Some(machine) = &movement.machine {
-        if machine_differs(machine, &movement.end, movement.transverse_as_diameter, config) {
+        if machine_differs(
+            machine,
+            &movement.end,
+            movement.transverse_as_diameter,
+            config,
+        ) {
             let machine_parts: Vec<String> = machine
                 .iter()
                 .map(|(name, value)| format!("{name}{}", short(*value)))
@@ -101,13 +109,21 @@ pub fn is_plain(movement: &Move, line_words: &[Word<'_>], config: &MachineConfig
     }
     let axes_plain = line_words.iter().all(|word| match axis_of(word, config) {
         None => true,
-        Some(axis) => match (&word.value, movement.end.iter().find(|(name, _)| **name == *axis)) {
+        Some(axis) => match (
+            &word.value,
+            movement.end.iter().find(|(name, _)| **name == *axis),
+        ) {
             (WordValue::Number(Some(written)), Some((_, end))) => same(*written, *end),
             _ => false,
         },
     });
     axes_plain
         && !movement.machine.as_ref().is_some_and(|machine| {
-            machine_differs(machine, &movement.end, movement.transverse_as_diameter, config)
+            machine_differs(
+                machine,
+                &movement.end,
+                movement.transverse_as_diameter,
+                config,
+            )
         })
 }

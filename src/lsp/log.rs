@@ -29,7 +29,11 @@ pub fn slow(what: &str, elapsed: Duration, outgoing: &OutgoingSender) {
 }
 
 /// Like [`slow`], with the description made only when it is needed.
-pub fn slow_with_sender(what: impl FnOnce() -> String, elapsed: Duration, outgoing: &OutgoingSender) {
+pub fn slow_with_sender(
+    what: impl FnOnce() -> String,
+    elapsed: Duration,
+    outgoing: &OutgoingSender,
+) {
     if elapsed > SLOW {
         slow(&what(), elapsed, outgoing);
     }

@@ -48,13 +48,18 @@ where
     let (service, socket) = LspService::build(move |client| server::Backend::new(client, outgoing))
         .custom_method(ext::DOCUMENT_TEXT_REQUEST, server::Backend::document_text)
         .finish();
-    Server::new(input, framework_output, socket).serve(service).await;
+    Server::new(input, framework_output, socket)
+        .serve(service)
+        .await;
     output_tasks.finish().await;
 }
 
 /// Runs the server on the process's stdin and stdout; returns the exit code.
 pub fn serve_stdio() -> u8 {
-    let runtime = match tokio::runtime::Builder::new_multi_thread().enable_all().build() {
+    let runtime = match tokio::runtime::Builder::new_multi_thread()
+        .enable_all()
+        .build()
+    {
         Ok(runtime) => runtime,
         Err(error) => {
             eprintln!("sinumerik-lsp: cannot start the language server: {error}");

@@ -4,7 +4,11 @@
 pub fn fixed(value: f64) -> String {
     let text = format!("{value:.3}");
     // -0.000 reads as a different position from 0.000; it is not one.
-    if text.trim_start_matches('-').bytes().all(|byte| byte == b'0' || byte == b'.') {
+    if text
+        .trim_start_matches('-')
+        .bytes()
+        .all(|byte| byte == b'0' || byte == b'.')
+    {
         text.trim_start_matches('-').to_string()
     } else {
         text

@@ -6,10 +6,14 @@
 use crate::lsp::log;
 use serde::Serialize;
 use std::time::Duration;
-use tokio::io::{AsyncBufReadExt, AsyncReadExt, AsyncWrite, AsyncWriteExt, BufReader, DuplexStream};
+use tokio::io::{
+    AsyncBufReadExt, AsyncReadExt, AsyncWrite, AsyncWriteExt, BufReader, DuplexStream,
+};
 use tokio::sync::mpsc;
 use tokio::task::JoinHandle;
-use tower_lsp_server::ls_types::{Diagnostic, LogMessageParams, MessageType, PublishDiagnosticsParams, Uri};
+use tower_lsp_server::ls_types::{
+    Diagnostic, LogMessageParams, MessageType, PublishDiagnosticsParams, Uri,
+};
 
 /// A notification the server sends on its own.
 pub enum Outgoing {
@@ -39,7 +43,12 @@ struct Notification<'a, P> {
 }
 
 fn framed<P: Serialize>(method: &'static str, params: &P) -> Option<Vec<u8>> {
-    let body = serde_json::to_vec(&Notification { jsonrpc: "2.0", method, params }).ok()?;
+    let body = serde_json::to_vec(&Notification {
+        jsonrpc: "2.0",
+        method,
+        params,
+    })
+    .ok()?;
     Some(with_header(&body))
 }
 
@@ -58,13 +67,33 @@ impl OutgoingSender {
     pub fn send(&self, message: Outgoing) {
         let started = std::time::Instant::now();
         let frame = match message {
-            Outgoing::Diagnostics { uri, version, diagnostics } => {
+            Outgoing::Diagnostics {
+                uri,
+                version,
+                diagnostics,
+            } => {
                 let count = diagnostics.len();
-                let frame = framed("textDocument/publishDiagnostics", &PublishDiagnosticsParams { uri, diagnostics, version });
-                log::slow_with(|| format!("serializing {count} diagnostics"), started.elapsed());
+                let frame = framed(
+                    "textDocument/publishDiagnostics",
+                    &PublishDiagnosticsParams {
+                        uri,
+                        diagnostics,
+                        version,
+                    },
+                );
+                log::slow_with(
+                    || format!("serializing {count} diagnostics"),
+                    started.elapsed(),
+                );
                 frame
             }
-            Outgoing::Log { level, message } => framed("window/logMessage", &LogMessageParams { typ: level, message }),
+            Outgoing::Log { level, message } => framed(
+                "window/logMessage",
+                &LogMessageParams {
+                    typ: level,
+                    message,
+                },
+            ),
         };
         if let Some(frame) = frame {
             let _ = self.0.send(Frame::Message(frame));
@@ -139,7 +168,15 @@ where
         }
         let _ = output.flush().await;
     });
-    (sender.clone(), framework_side, OutputTasks { sender, forwarder, writer })
+    (
+        sender.clone(),
+        framework_side,
+        OutputTasks {
+            sender,
+            forwarder,
+            writer,
+        },
+    )
 }
 
 /// One message as the framework wrote it, header included; `None` when the framework has stopped.

@@ -30,7 +30,8 @@ const CONFIGURATION_TIMEOUT: Duration = Duration::from_secs(10);
 
 /// Set by `shutdown`: the process's exit code depends on it (the protocol asks for 1 when the client
 /// exits without shutting the server down first). One server runs per process.
-pub static SHUTDOWN_REQUESTED: std::sync::atomic::AtomicBool = std::sync::atomic::AtomicBool::new(false);
+pub static SHUTDOWN_REQUESTED: std::sync::atomic::AtomicBool =
+    std::sync::atomic::AtomicBool::new(false);
 
 /// What the client told at initialize.
 #[derive(Debug, Clone, Default)]
@@ -64,10 +65,7 @@ fn not_open(uri: &Uri) -> Error {
 
 /// The file of a `file:` URI.
 pub fn file_path(uri: &Uri) -> Option<PathBuf> {
-    let is_file = uri
-        .scheme()
-        .as_str()
-        .eq_ignore_ascii_case("file");
+    let is_file = uri.scheme().as_str().eq_ignore_ascii_case("file");
     if !is_file {
         return None;
     }
@@ -76,8 +74,15 @@ pub fn file_path(uri: &Uri) -> Option<PathBuf> {
 
 fn program_kind(uri: &Uri, path: Option<&Path>) -> ProgramKind {
     let extension = match path {
-        Some(path) => path.extension().and_then(|extension| extension.to_str()).map(str::to_string),
-        None => uri.path().as_str().rsplit_once('.').map(|(_, extension)| extension.to_string()),
+        Some(path) => path
+            .extension()
+            .and_then(|extension| extension.to_str())
+            .map(str::to_string),
+        None => uri
+            .path()
+            .as_str()
+            .rsplit_once('.')
+            .map(|(_, extension)| extension.to_string()),
     };
     ProgramKind::from_extension(extension.as_deref())
 }
@@ -138,14 +143,16 @@ impl Backend {
 impl Backend {
     /// `sinumerik/documentText`.
     pub async fn document_text(&self, params: DocumentTextParams) -> Result<DocumentTextResult> {
-        let document = self.documents.get(&params.uri).ok_or_else(|| not_open(&params.uri))?;
+        let document = self
+            .documents
+            .get(&params.uri)
+            .ok_or_else(|| not_open(&params.uri))?;
         let (version, text) = document.text_now();
         Ok(DocumentTextResult { version, text })
     }
 }
 
 impl Shared {
-
     fn encoding(&self) -> PositionEncoding {
         lock(&self.info).encoding.unwrap_or(PositionEncoding::Utf16)
     }
@@ -168,15 +175,22 @@ impl Shared {
         let root = lock(&self.info).workspace_root.clone();
         let (config, error) = machine_config_for(path, &settings, root.as_deref());
         if let Some(error) = error {
-            self.outgoing.log_error(format!("{error}; the defaults of a metric mill are used"));
+            self.outgoing
+                .log_error(format!("{error}; the defaults of a metric mill are used"));
             if let Some(uri) = Uri::from_file_path(&error.path) {
                 let line = error.position.map_or(0, |(line, _)| line.saturating_sub(1)) as u32;
-                let column = error.position.map_or(0, |(_, column)| column.saturating_sub(1)) as u32;
+                let column = error
+                    .position
+                    .map_or(0, |(_, column)| column.saturating_sub(1))
+                    as u32;
                 self.outgoing.send(Outgoing::Diagnostics {
                     uri,
                     version: None,
                     diagnostics: vec![Diagnostic {
-                        range: Range::new(Position::new(line, column), Position::new(line, column + 1)),
+                        range: Range::new(
+                            Position::new(line, column),
+                            Position::new(line, column + 1),
+                        ),
                         severity: Some(DiagnosticSeverity::ERROR),
                         source: Some("sinumerik".to_string()),
                         message: error.to_string(),
@@ -233,7 +247,8 @@ impl Shared {
         match answer {
             Ok(result) => result,
             Err(join_error) => {
-                self.outgoing.log_error(format!("a request failed: {join_error}"));
+                self.outgoing
+                    .log_error(format!("a request failed: {join_error}"));
                 Err(Error::internal_error())
             }
         }
@@ -263,7 +278,9 @@ impl LanguageServer for Backend {
             .and_then(file_path);
         *lock(&self.info) = ClientInfo {
             encoding: Some(encoding),
-            pulls_configuration: workspace.and_then(|workspace| workspace.configuration).unwrap_or(false),
+            pulls_configuration: workspace
+                .and_then(|workspace| workspace.configuration)
+                .unwrap_or(false),
             refreshes_inlay_hints: workspace
                 .and_then(|workspace| workspace.inlay_hint.as_ref())
                 .and_then(|inlay| inlay.refresh_support)
@@ -278,16 +295,20 @@ impl LanguageServer for Backend {
         Ok(InitializeResult {
             capabilities: ServerCapabilities {
                 position_encoding: Some(encoding.kind()),
-                text_document_sync: Some(TextDocumentSyncCapability::Options(TextDocumentSyncOptions {
-                    open_close: Some(true),
-                    change: Some(TextDocumentSyncKind::INCREMENTAL),
-                    ..TextDocumentSyncOptions::default()
-                })),
+                text_document_sync: Some(TextDocumentSyncCapability::Options(
+                    TextDocumentSyncOptions {
+                        open_close: Some(true),
+                        change: Some(TextDocumentSyncKind::INCREMENTAL),
+                        ..TextDocumentSyncOptions::default()
+                    },
+                )),
                 hover_provider: Some(HoverProviderCapability::Simple(true)),
-                code_action_provider: Some(CodeActionProviderCapability::Options(CodeActionOptions {
-                    code_action_kinds: Some(vec![CodeActionKind::QUICKFIX]),
-                    ..CodeActionOptions::default()
-                })),
+                code_action_provider: Some(CodeActionProviderCapability::Options(
+                    CodeActionOptions {
+                        code_action_kinds: Some(vec![CodeActionKind::QUICKFIX]),
+                        ..CodeActionOptions::default()
+                    },
+                )),
                 inlay_hint_provider: Some(OneOf::Left(true)),
                 execute_command_provider: Some(ExecuteCommandOptions {
                     commands: vec![ENDPOINT_PREVIEW_COMMAND.to_string()],
@@ -320,10 +341,20 @@ impl LanguageServer for Backend {
         let path = file_path(&item.uri);
         let kind = program_kind(&item.uri, path.as_deref());
         let config = self.machine_config(path.as_deref());
-        let document = Arc::new(OpenDocument::new(item.uri.clone(), path, kind, &item.text, item.version, config));
+        let document = Arc::new(OpenDocument::new(
+            item.uri.clone(),
+            path,
+            kind,
+            &item.text,
+            item.version,
+            config,
+        ));
         let context = self.context();
         if let Some(replaced) = self.documents.insert(Arc::clone(&document)) {
-            self.warn(format!("{} was opened again without being closed; the new text replaces the old", item.uri.as_str()));
+            self.warn(format!(
+                "{} was opened again without being closed; the new text replaces the old",
+                item.uri.as_str()
+            ));
             replaced.close(&context);
         }
         document.start(&context);
@@ -333,11 +364,18 @@ impl LanguageServer for Backend {
         let _timer = HandlerTimer::new("textDocument/didChange", &self.outgoing);
         let uri = params.text_document.uri;
         let Some(document) = self.documents.get(&uri) else {
-            self.warn(format!("an edit of {}, which is not open, is ignored", uri.as_str()));
+            self.warn(format!(
+                "an edit of {}, which is not open, is ignored",
+                uri.as_str()
+            ));
             return;
         };
         let context = self.context();
-        match document.change(&params.content_changes, params.text_document.version, &context) {
+        match document.change(
+            &params.content_changes,
+            params.text_document.version,
+            &context,
+        ) {
             Ok(()) => {}
             Err(error @ ChangeError::StaleVersion { .. }) => {
                 self.warn(format!("{}: {error}", uri.as_str()));
@@ -380,9 +418,10 @@ impl LanguageServer for Backend {
         let _timer = HandlerTimer::new("textDocument/hover", &self.outgoing);
         let position = params.text_document_position_params.position;
         let encoding = self.encoding();
-        self.on_analysis(&params.text_document_position_params.text_document.uri, move |analysed| {
-            hover(analysed, position, encoding)
-        })
+        self.on_analysis(
+            &params.text_document_position_params.text_document.uri,
+            move |analysed| hover(analysed, position, encoding),
+        )
         .await
     }
 
@@ -411,15 +450,20 @@ impl LanguageServer for Backend {
     async fn execute_command(&self, params: ExecuteCommandParams) -> Result<Option<Value>> {
         let _timer = HandlerTimer::new("workspace/executeCommand", &self.outgoing);
         if params.command != ENDPOINT_PREVIEW_COMMAND {
-            return Err(Error::invalid_params(format!("unknown command {}", params.command)));
+            return Err(Error::invalid_params(format!(
+                "unknown command {}",
+                params.command
+            )));
         }
         let [argument] = params.arguments.as_slice() else {
             return Err(Error::invalid_params(format!(
                 "{ENDPOINT_PREVIEW_COMMAND} takes one argument {{\"uri\", \"startLine\"?, \"endLine\"?}}"
             )));
         };
-        let preview: EndpointPreviewParams = serde_json::from_value(argument.clone())
-            .map_err(|error| Error::invalid_params(format!("{ENDPOINT_PREVIEW_COMMAND}: {error}")))?;
+        let preview: EndpointPreviewParams =
+            serde_json::from_value(argument.clone()).map_err(|error| {
+                Error::invalid_params(format!("{ENDPOINT_PREVIEW_COMMAND}: {error}"))
+            })?;
         let lines = endpoint_preview::LineSelection {
             start: preview.start_line,
             end: preview.end_line,
@@ -429,19 +473,25 @@ impl LanguageServer for Backend {
             .unwrap_or_else(|| preview.uri.as_str().to_string());
         if self.documents.get(&preview.uri).is_some() {
             let result = self
-                .on_analysis(&preview.uri, move |analysed| endpoint_preview::preview_open(analysed, &label, lines))
+                .on_analysis(&preview.uri, move |analysed| {
+                    endpoint_preview::preview_open(analysed, &label, lines)
+                })
                 .await?;
             return result.map(Some).map_err(Error::invalid_params);
         }
         let path = file_path(&preview.uri).ok_or_else(|| {
-            Error::invalid_params(format!("{} is neither open nor a file: URI", preview.uri.as_str()))
+            Error::invalid_params(format!(
+                "{} is neither open nor a file: URI",
+                preview.uri.as_str()
+            ))
         })?;
         let config = self.machine_config(Some(&path));
         let kind = program_kind(&preview.uri, Some(&path));
-        let result = tokio::task::spawn_blocking(move || endpoint_preview::preview_file(&path, &label, config, kind, lines))
-            .await
-            .map_err(|_| Error::internal_error())?;
+        let result = tokio::task::spawn_blocking(move || {
+            endpoint_preview::preview_file(&path, &label, config, kind, lines)
+        })
+        .await
+        .map_err(|_| Error::internal_error())?;
         result.map(Some).map_err(Error::invalid_params)
     }
 }
-

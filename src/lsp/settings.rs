@@ -80,9 +80,7 @@ pub fn machine_config_for(
                 .unwrap_or_else(|| config_file.clone()),
         ),
         Some(config_file) => Some(config_file.clone()),
-        None => path
-            .and_then(Path::parent)
-            .and_then(discover_config_file),
+        None => path.and_then(Path::parent).and_then(discover_config_file),
     };
     match config_path.map(|config_path| load_config_file(&config_path)) {
         None => (Arc::new(MachineConfig::default()), None),
@@ -100,9 +98,13 @@ mod tests {
     fn settings_apply_flat_or_under_the_section() {
         let mut settings = Settings::default();
         assert_eq!(settings.inlay_hints, InlayHintMode::NotPlain);
-        settings.apply(&json!({"sinumerik": {"inlayHints": "all"}})).unwrap();
+        settings
+            .apply(&json!({"sinumerik": {"inlayHints": "all"}}))
+            .unwrap();
         assert_eq!(settings.inlay_hints, InlayHintMode::All);
-        settings.apply(&json!({"inlayHints": "off", "configFile": "m.toml"})).unwrap();
+        settings
+            .apply(&json!({"inlayHints": "off", "configFile": "m.toml"}))
+            .unwrap();
         assert_eq!(settings.inlay_hints, InlayHintMode::Off);
         assert_eq!(settings.config_file, Some(PathBuf::from("m.toml")));
         settings.apply(&json!({"configFile": null})).unwrap();

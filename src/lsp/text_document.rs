@@ -283,7 +283,15 @@ mod tests {
 
     #[test]
     fn lines_split_like_the_core() {
-        for text in ["", "a", "a\n", "a\nb\r\nc\rd", "\r\r", "a\n\n", "x\u{c}y\u{2028}z"] {
+        for text in [
+            "",
+            "a",
+            "a\n",
+            "a\nb\r\nc\rd",
+            "\r\r",
+            "a\n\n",
+            "x\u{c}y\u{2028}z",
+        ] {
             let expected: Vec<String> = crate::syntax::lines::line_ranges(text)
                 .map(|(start, end)| text[start..end].to_string())
                 .collect();
@@ -296,7 +304,10 @@ mod tests {
         let mut document = DocumentText::new("N10 X1\nN20 X2\nN30 X3\n", 1);
         let changed = apply_changes(
             &mut document,
-            &[change((1, 4), (1, 6), "Y7\nN25 Y8"), change((0, 0), (0, 0), ";")],
+            &[
+                change((1, 4), (1, 6), "Y7\nN25 Y8"),
+                change((0, 0), (0, 0), ";"),
+            ],
             2,
             PositionEncoding::Utf16,
         )
@@ -306,27 +317,57 @@ mod tests {
             document.rope.to_string(),
             ";N10 X1\nN20 Y7\nN25 Y8\nN30 X3\n"
         );
-        assert_eq!(changed.to_core(3, 4), LineChange { first: 0, removed: 2, inserted: 3 });
+        assert_eq!(
+            changed.to_core(3, 4),
+            LineChange {
+                first: 0,
+                removed: 2,
+                inserted: 3
+            }
+        );
     }
 
     #[test]
     fn stale_versions_are_rejected_unchanged() {
         let mut document = DocumentText::new("N10\n", 5);
-        let error = apply_changes(&mut document, &[change((0, 0), (0, 0), "x")], 5, PositionEncoding::Utf16)
-            .unwrap_err();
-        assert_eq!(error, ChangeError::StaleVersion { current: 5, received: 5 });
+        let error = apply_changes(
+            &mut document,
+            &[change((0, 0), (0, 0), "x")],
+            5,
+            PositionEncoding::Utf16,
+        )
+        .unwrap_err();
+        assert_eq!(
+            error,
+            ChangeError::StaleVersion {
+                current: 5,
+                received: 5
+            }
+        );
         assert_eq!(document.rope.to_string(), "N10\n");
     }
 
     #[test]
     fn a_cr_joined_with_a_following_lf_counts_as_one_break() {
         let mut document = DocumentText::new("a\rb", 1);
-        let changed = apply_changes(&mut document, &[change((1, 0), (1, 0), "\n")], 2, PositionEncoding::Utf16)
-            .unwrap()
-            .unwrap();
+        let changed = apply_changes(
+            &mut document,
+            &[change((1, 0), (1, 0), "\n")],
+            2,
+            PositionEncoding::Utf16,
+        )
+        .unwrap()
+        .unwrap();
         assert_eq!(document.rope.to_string(), "a\r\nb");
         // "a\r" and the new "\n" joined into one CRLF: still two lines, and line 0 is untouched.
         assert_eq!(lines("a\r\nb"), vec!["a", "b"]);
-        assert_eq!(changed.to_core(2, 2), LineChange { first: 1, removed: 1, inserted: 1 });
+        assert_eq!(
+            changed.to_core(2, 2),
+            LineChange {
+                first: 1,
+                removed: 1,
+                inserted: 1
+            }
+        );
     }
 }

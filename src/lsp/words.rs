@@ -60,7 +60,9 @@ fn parse_number(text: &str) -> Option<f64> {
     let text = text.trim();
     let digits = text.strip_prefix(['+', '-']).unwrap_or(text);
     let plain = !digits.is_empty()
-        && digits.bytes().all(|byte| byte.is_ascii_digit() || byte == b'.')
+        && digits
+            .bytes()
+            .all(|byte| byte.is_ascii_digit() || byte == b'.')
         && digits.bytes().filter(|&byte| byte == b'.').count() <= 1
         && digits.bytes().any(|byte| byte.is_ascii_digit());
     if !plain {
@@ -92,12 +94,19 @@ pub fn words(line: &str) -> Vec<Word<'_>> {
             continue;
         }
         let start = index;
-        while index < bytes.len() && (bytes[index].is_ascii_alphabetic() || bytes[index] == b'_' || bytes[index] == b'$') {
+        while index < bytes.len()
+            && (bytes[index].is_ascii_alphabetic() || bytes[index] == b'_' || bytes[index] == b'$')
+        {
             index += 1;
         }
         let letters_end = index;
         let number_start = index;
-        if index < bytes.len() && matches!(bytes[index], b'+' | b'-') && bytes.get(index + 1).is_some_and(|next| next.is_ascii_digit() || *next == b'.') {
+        if index < bytes.len()
+            && matches!(bytes[index], b'+' | b'-')
+            && bytes
+                .get(index + 1)
+                .is_some_and(|next| next.is_ascii_digit() || *next == b'.')
+        {
             index += 1;
         }
         while index < bytes.len() && (bytes[index].is_ascii_digit() || bytes[index] == b'.') {

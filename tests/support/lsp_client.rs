@@ -59,7 +59,10 @@ pub async fn read_message<R: AsyncRead + Unpin>(reader: &mut BufReader<R>) -> Op
 async fn write_value(writer: &Writer, value: &Value) {
     let message = frame(value.to_string().as_bytes());
     let mut writer = writer.lock().await;
-    writer.write_all(&message).await.expect("the server's input is open");
+    writer
+        .write_all(&message)
+        .await
+        .expect("the server's input is open");
     writer.flush().await.expect("the server's input is open");
 }
 
@@ -140,7 +143,11 @@ impl TestClient {
     }
 
     pub async fn notify(&mut self, method: &str, params: Value) {
-        write_value(&self.writer, &json!({"jsonrpc": "2.0", "method": method, "params": params})).await;
+        write_value(
+            &self.writer,
+            &json!({"jsonrpc": "2.0", "method": method, "params": params}),
+        )
+        .await;
     }
 
     /// Sends raw bytes (for malformed input).
@@ -154,13 +161,21 @@ impl TestClient {
     pub async fn send_request(&mut self, method: &str, params: Value) -> i64 {
         let id = self.next_id;
         self.next_id += 1;
-        write_value(&self.writer, &json!({"jsonrpc": "2.0", "id": id, "method": method, "params": params})).await;
+        write_value(
+            &self.writer,
+            &json!({"jsonrpc": "2.0", "id": id, "method": method, "params": params}),
+        )
+        .await;
         id
     }
 
     /// The response to request `id`: `Ok(result)` or `Err(error)`.
     pub async fn response(&mut self, id: i64) -> Result<Value, Value> {
-        if let Some(index) = self.stash.iter().position(|message| is_response(message, id)) {
+        if let Some(index) = self
+            .stash
+            .iter()
+            .position(|message| is_response(message, id))
+        {
             return into_result(self.stash.remove(index).unwrap());
         }
         loop {
@@ -179,7 +194,9 @@ impl TestClient {
 
     /// The first notification `method` whose params satisfy `wanted`, also one received earlier.
     pub async fn notification(&mut self, method: &str, wanted: impl Fn(&Value) -> bool) -> Value {
-        let matches = |message: &Value| message.get("id").is_none() && message["method"] == method && wanted(&message["params"]);
+        let matches = |message: &Value| {
+            message.get("id").is_none() && message["method"] == method && wanted(&message["params"])
+        };
         if let Some(index) = self.stash.iter().position(matches) {
             return self.stash.remove(index).unwrap()["params"].clone();
         }
@@ -210,9 +227,14 @@ impl TestClient {
     /// The diagnostics published for `uri` at `version`.
     pub async fn diagnostics(&mut self, uri: &str, version: i64) -> Vec<Value> {
         let params = self
-            .notification("textDocument/publishDiagnostics", |params| params["uri"] == uri && params["version"] == version)
+            .notification("textDocument/publishDiagnostics", |params| {
+                params["uri"] == uri && params["version"] == version
+            })
             .await;
-        params["diagnostics"].as_array().cloned().unwrap_or_default()
+        params["diagnostics"]
+            .as_array()
+            .cloned()
+            .unwrap_or_default()
     }
 
     /// `initialize` with the given client capabilities and options, then `initialized`.
@@ -237,13 +259,22 @@ impl TestClient {
     }
 
     pub async fn change(&mut self, uri: &str, version: i64, changes: Value) {
-        self.notify("textDocument/didChange", json!({"textDocument": {"uri": uri, "version": version}, "contentChanges": changes}))
-            .await;
+        self.notify(
+            "textDocument/didChange",
+            json!({"textDocument": {"uri": uri, "version": version}, "contentChanges": changes}),
+        )
+        .await;
     }
 
     pub async fn document_text(&mut self, uri: &str) -> (i64, String) {
-        let result = self.request("sinumerik/documentText", json!({"uri": uri})).await.expect("the document is open");
-        (result["version"].as_i64().unwrap(), result["text"].as_str().unwrap().to_string())
+        let result = self
+            .request("sinumerik/documentText", json!({"uri": uri}))
+            .await
+            .expect("the document is open");
+        (
+            result["version"].as_i64().unwrap(),
+            result["text"].as_str().unwrap().to_string(),
+        )
     }
 
     pub async fn hover(&mut self, uri: &str, line: u32, character: u32) -> String {
@@ -251,19 +282,30 @@ impl TestClient {
             .request("textDocument/hover", json!({"textDocument": {"uri": uri}, "position": {"line": line, "character": character}}))
             .await
             .expect("hover succeeds");
-        result["contents"]["value"].as_str().unwrap_or_default().to_string()
+        result["contents"]["value"]
+            .as_str()
+            .unwrap_or_default()
+            .to_string()
     }
 
     /// `shutdown` and `exit`; for the binary, waits for it to end and returns its exit code.
     pub async fn shutdown(mut self) -> Option<i32> {
-        self.request("shutdown", Value::Null).await.expect("shutdown succeeds");
+        self.request("shutdown", Value::Null)
+            .await
+            .expect("shutdown succeeds");
         self.notify("exit", Value::Null).await;
         if let Some(server) = self.server.take() {
-            tokio::time::timeout(TIMEOUT, server).await.expect("the server stops after exit").unwrap();
+            tokio::time::timeout(TIMEOUT, server)
+                .await
+                .expect("the server stops after exit")
+                .unwrap();
         }
         match self.child.take() {
             Some(mut child) => {
-                let status = tokio::time::timeout(TIMEOUT, child.wait()).await.expect("the binary exits").unwrap();
+                let status = tokio::time::timeout(TIMEOUT, child.wait())
+                    .await
+                    .expect("the binary exits")
+                    .unwrap();
                 status.code()
             }
             None => None,
@@ -275,7 +317,10 @@ impl TestClient {
     /// Waits for the binary to end (after `exit`) and returns its exit code.
     pub async fn wait_for_exit(mut self) -> Option<i32> {
         let mut child = self.child.take()?;
-        let status = tokio::time::timeout(TIMEOUT, child.wait()).await.expect("the binary exits").unwrap();
+        let status = tokio::time::timeout(TIMEOUT, child.wait())
+            .await
+            .expect("the binary exits")
+            .unwrap();
         status.code()
     }
 }
@@ -297,7 +342,9 @@ pub fn file_uri(path: &std::path::Path) -> String {
     let mut uri = String::from("file://");
     for byte in absolute.to_string_lossy().bytes() {
         match byte {
-            b'A'..=b'Z' | b'a'..=b'z' | b'0'..=b'9' | b'/' | b'-' | b'_' | b'.' | b'~' => uri.push(byte as char),
+            b'A'..=b'Z' | b'a'..=b'z' | b'0'..=b'9' | b'/' | b'-' | b'_' | b'.' | b'~' => {
+                uri.push(byte as char)
+            }
             _ => uri.push_str(&format!("%{byte:02X}")),
         }
     }
@@ -306,16 +353,26 @@ pub fn file_uri(path: &std::path::Path) -> String {
 
 /// The seed example of the repository.
 pub fn seed_text() -> String {
-    std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/fixtures/examples/turning_seed.mpf")).unwrap()
+    std::fs::read_to_string(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/fixtures/examples/turning_seed.mpf"
+    ))
+    .unwrap()
 }
 
 /// LSP position (line, UTF-16 column) of the first occurrence of `needle` in `text`.
 pub fn position_of(text: &str, needle: &str) -> (u32, u32) {
-    let byte = text.find(needle).unwrap_or_else(|| panic!("{needle:?} is in the text"));
+    let byte = text
+        .find(needle)
+        .unwrap_or_else(|| panic!("{needle:?} is in the text"));
     let before = &text[..byte];
     let line_start = before.rfind(['\n', '\r']).map_or(0, |index| index + 1);
-    let line = before.matches('\n').count() + before.matches('\r').count() - before.matches("\r\n").count();
-    (line as u32, before[line_start..].encode_utf16().count() as u32)
+    let line = before.matches('\n').count() + before.matches('\r').count()
+        - before.matches("\r\n").count();
+    (
+        line as u32,
+        before[line_start..].encode_utf16().count() as u32,
+    )
 }
 
 /// The byte offset of an LSP position (UTF-16 columns) in `text`, clamped as the protocol's
@@ -325,10 +382,18 @@ pub fn byte_offset(text: &str, line: u32, character: u32) -> usize {
     let bytes = text.as_bytes();
     let mut line_start = 0;
     for _ in 0..line {
-        match bytes[line_start..].iter().position(|&byte| byte == b'\n' || byte == b'\r') {
+        match bytes[line_start..]
+            .iter()
+            .position(|&byte| byte == b'\n' || byte == b'\r')
+        {
             Some(offset) => {
                 let terminator = line_start + offset;
-                line_start = terminator + if bytes[terminator] == b'\r' && bytes.get(terminator + 1) == Some(&b'\n') { 2 } else { 1 };
+                line_start = terminator
+                    + if bytes[terminator] == b'\r' && bytes.get(terminator + 1) == Some(&b'\n') {
+                        2
+                    } else {
+                        1
+                    };
             }
             None => return text.len(),
         }
