@@ -4,7 +4,7 @@
 #[path = "support/lsp_client.rs"]
 mod lsp_client;
 
-use lsp_client::{file_uri, position_of, TestClient};
+use lsp_client::{file_uri, position_of, temp_folder, TestClient};
 use serde_json::{json, Value};
 
 const TURN: &str = "[machine]\nkind = \"turn\"\n";
@@ -52,13 +52,6 @@ async fn open_case(
     client.open(&uri, 1, &text).await;
     client.diagnostics(&uri, 1).await;
     (uri, text, position)
-}
-
-fn temp_folder(name: &str) -> std::path::PathBuf {
-    let folder = std::env::temp_dir().join(format!("sinumerik-lsp-{name}-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&folder);
-    std::fs::create_dir_all(&folder).unwrap();
-    folder
 }
 
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
@@ -141,21 +134,7 @@ async fn inlay_hints_mark_end_points_that_are_not_plain() {
             expected: &[],
         };
         let (uri, _, _) = open_case(&mut client, &hover_case, &folder).await;
-        let hints = client
-            .request("textDocument/inlayHint", json!({"textDocument": {"uri": uri}, "range": {"start": {"line": 0, "character": 0}, "end": {"line": 50, "character": 0}}}))
-            .await
-            .unwrap();
-        let labels: Vec<(u64, String)> = hints
-            .as_array()
-            .unwrap()
-            .iter()
-            .map(|hint| {
-                (
-                    hint["position"]["line"].as_u64().unwrap(),
-                    hint["label"].as_str().unwrap().to_string(),
-                )
-            })
-            .collect();
+        let labels = client.inlay_hint_labels(&uri, 0, 50).await;
         let expected: Vec<(u64, String)> = case
             .expected
             .iter()

@@ -5,7 +5,7 @@
 #[path = "support/lsp_client.rs"]
 mod lsp_client;
 
-use lsp_client::{file_uri, position_of, seed_text, TestClient};
+use lsp_client::{file_uri, position_of, seed_text, temp_folder, TestClient};
 use serde_json::{json, Value};
 use sinumerik_lsp::analysis::document::{DocumentAnalysis, TextLines};
 use sinumerik_lsp::analysis::ProgramKind;
@@ -201,26 +201,8 @@ async fn utf8_positions_count_bytes() {
     client.shutdown().await;
 }
 
-fn hint_labels(hints: &Value) -> Vec<(u64, String)> {
-    hints
-        .as_array()
-        .unwrap()
-        .iter()
-        .map(|hint| {
-            (
-                hint["position"]["line"].as_u64().unwrap(),
-                hint["label"].as_str().unwrap().to_string(),
-            )
-        })
-        .collect()
-}
-
 async fn inlay_hints(client: &mut TestClient, uri: &str) -> Vec<(u64, String)> {
-    let hints = client
-        .request("textDocument/inlayHint", json!({"textDocument": {"uri": uri}, "range": {"start": {"line": 0, "character": 0}, "end": {"line": 100, "character": 0}}}))
-        .await
-        .unwrap();
-    hint_labels(&hints)
+    client.inlay_hint_labels(uri, 0, 100).await
 }
 
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
@@ -290,14 +272,6 @@ fn cli_preview(path: &std::path::Path) -> Value {
     serde_json::from_slice(&output.stdout).unwrap()
 }
 
-fn temp_folder(name: &str) -> std::path::PathBuf {
-    let folder =
-        std::env::temp_dir().join(format!("sinumerik-lsp-test-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&folder);
-    std::fs::create_dir_all(&folder).unwrap();
-    folder
-}
-
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
 async fn the_preview_command_matches_the_cli_for_open_and_unopened_files() {
     let mut client = initialized_client().await;
@@ -307,13 +281,7 @@ async fn the_preview_command_matches_the_cli_for_open_and_unopened_files() {
     ));
     let seed_uri = file_uri(seed_path);
     client.open(&seed_uri, 1, &seed_text()).await;
-    let preview = client
-        .request(
-            "workspace/executeCommand",
-            json!({"command": "sinumerik.endpointPreview", "arguments": [{"uri": seed_uri}]}),
-        )
-        .await
-        .unwrap();
+    let preview = client.preview(json!({"uri": seed_uri})).await.unwrap();
     let expected = cli_preview(seed_path);
     assert_eq!(preview["moves"], expected["moves"]);
     assert_eq!(preview["diagnostics"], expected["diagnostics"]);
@@ -329,22 +297,13 @@ async fn the_preview_command_matches_the_cli_for_open_and_unopened_files() {
     )
     .unwrap();
     let uri = file_uri(&path);
-    let preview = client
-        .request(
-            "workspace/executeCommand",
-            json!({"command": "sinumerik.endpointPreview", "arguments": [{"uri": uri}]}),
-        )
-        .await
-        .unwrap();
+    let preview = client.preview(json!({"uri": uri})).await.unwrap();
     let expected = cli_preview(&path);
     assert_eq!(preview["moves"], expected["moves"]);
     assert_eq!(preview["diagnostics"], expected["diagnostics"]);
     assert_eq!(preview["file"], path.display().to_string());
     let part = client
-        .request(
-            "workspace/executeCommand",
-            json!({"command": "sinumerik.endpointPreview", "arguments": [{"uri": uri, "startLine": 1, "endLine": 1}]}),
-        )
+        .preview(json!({"uri": uri, "startLine": 1, "endLine": 1}))
         .await
         .unwrap();
     assert_eq!(part["moves"], json!([expected["moves"][1]]));
@@ -352,7 +311,7 @@ async fn the_preview_command_matches_the_cli_for_open_and_unopened_files() {
     assert_eq!(part["diagnostics"], json!([]));
 
     let missing = client
-        .request("workspace/executeCommand", json!({"command": "sinumerik.endpointPreview", "arguments": [{"uri": file_uri(&folder.join("missing.mpf"))}]}))
+        .preview(json!({"uri": file_uri(&folder.join("missing.mpf"))}))
         .await
         .unwrap_err();
     assert!(
@@ -517,13 +476,7 @@ async fn bad_requests_and_notifications_are_answered_or_logged_and_the_server_ke
         .as_str()
         .unwrap()
         .contains("unknown command"));
-    let error = client
-        .request(
-            "workspace/executeCommand",
-            json!({"command": "sinumerik.endpointPreview", "arguments": [{"url": 1}]}),
-        )
-        .await
-        .unwrap_err();
+    let error = client.preview(json!({"url": 1})).await.unwrap_err();
     assert_eq!(error["code"], -32602);
     client
         .notify("textDocument/didChange", json!({"textDocument": 17}))

@@ -160,15 +160,9 @@ async fn random_edits_through_the_protocol_equal_a_fresh_analysis() {
         // End points: the preview of the open document equals that of the same text read from disk.
         let path = folder.join(format!("random{round}.mpf"));
         std::fs::write(&path, &expected).unwrap();
-        let open = client
-            .request(
-                "workspace/executeCommand",
-                json!({"command": "sinumerik.endpointPreview", "arguments": [{"uri": uri}]}),
-            )
-            .await
-            .unwrap();
+        let open = client.preview(json!({"uri": uri})).await.unwrap();
         let fresh = client
-            .request("workspace/executeCommand", json!({"command": "sinumerik.endpointPreview", "arguments": [{"uri": lsp_client::file_uri(&path)}]}))
+            .preview(json!({"uri": lsp_client::file_uri(&path)}))
             .await
             .unwrap();
         assert_eq!(open["moves"], fresh["moves"], "round {round}: {expected:?}");

@@ -40,17 +40,10 @@ async fn the_binary_serves_the_seed_example_over_stdio() {
         "{diagnostics:?}"
     );
 
-    let hints = client
-        .request("textDocument/inlayHint", json!({"textDocument": {"uri": uri}, "range": {"start": {"line": 0, "character": 0}, "end": {"line": 9, "character": 0}}}))
-        .await
-        .unwrap();
+    let hints = client.inlay_hint_labels(&uri, 0, 9).await;
     assert!(
-        hints
-            .as_array()
-            .unwrap()
-            .iter()
-            .any(|hint| hint["label"] == "⟶ X103 Z17"),
-        "{hints}"
+        hints.iter().any(|(_, label)| label == "⟶ X103 Z17"),
+        "{hints:?}"
     );
     assert_eq!(client.shutdown().await, Some(0));
 }
@@ -61,7 +54,7 @@ async fn serve_and_stdio_arguments_start_the_server_and_preview_reads_files_from
         let mut client = TestClient::spawn_binary(args);
         client.initialize(json!({}), Value::Null).await;
         let preview = client
-            .request("workspace/executeCommand", json!({"command": "sinumerik.endpointPreview", "arguments": [{"uri": file_uri(&seed_path()), "startLine": 4}]}))
+            .preview(json!({"uri": file_uri(&seed_path()), "startLine": 4}))
             .await
             .unwrap();
         let ends: Vec<&Value> = preview["moves"]

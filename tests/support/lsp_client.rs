@@ -460,3 +460,50 @@ pub fn lsp_line_length(text: &str, line: u32) -> u32 {
     let end = byte_offset(text, line, u32::MAX);
     text[start..end].encode_utf16().count() as u32
 }
+
+impl TestClient {
+    /// `sinumerik.endpointPreview` with one argument object (`{"uri", "startLine"?, "endLine"?}`).
+    pub async fn preview(&mut self, argument: Value) -> Result<Value, Value> {
+        self.request(
+            "workspace/executeCommand",
+            json!({"command": "sinumerik.endpointPreview", "arguments": [argument]}),
+        )
+        .await
+    }
+
+    /// The inlay hints of lines `first ..= last` as (line, label).
+    pub async fn inlay_hint_labels(
+        &mut self,
+        uri: &str,
+        first: u32,
+        last: u32,
+    ) -> Vec<(u64, String)> {
+        let hints = self
+            .request(
+                "textDocument/inlayHint",
+                json!({"textDocument": {"uri": uri}, "range": {"start": {"line": first, "character": 0}, "end": {"line": last, "character": 0}}}),
+            )
+            .await
+            .expect("inlay hints succeed");
+        hints
+            .as_array()
+            .expect("a list of hints")
+            .iter()
+            .map(|hint| {
+                (
+                    hint["position"]["line"].as_u64().unwrap(),
+                    hint["label"].as_str().unwrap().to_string(),
+                )
+            })
+            .collect()
+    }
+}
+
+/// An empty folder of its own for one test.
+pub fn temp_folder(name: &str) -> std::path::PathBuf {
+    let folder =
+        std::env::temp_dir().join(format!("sinumerik-lsp-test-{}-{name}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&folder);
+    std::fs::create_dir_all(&folder).unwrap();
+    folder
+}
