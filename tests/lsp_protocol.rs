@@ -567,3 +567,36 @@ async fn thousands_of_rapid_edits_are_applied_in_order() {
     );
     client.shutdown().await;
 }
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn every_version_gets_its_diagnostics_also_when_they_did_not_change() {
+    let mut client = initialized_client().await;
+    let uri = "file:///nonexistent/ascii.mpf";
+    client.open(uri, 1, "N10 G0 Z=AC17\nN20 X1\n").await;
+    let first = client.diagnostics(uri, 1).await;
+    let s101 = |diagnostics: &[Value]| {
+        diagnostics
+            .iter()
+            .find(|diagnostic| diagnostic["code"] == "S101")
+            .map(|diagnostic| diagnostic["range"].clone())
+            .expect("S101")
+    };
+    let insert_space = |line: u32| json!([{"range": {"start": {"line": line, "character": 0}, "end": {"line": line, "character": 0}}, "text": " "}]);
+    // A space on the other line: the same diagnostics, published again for the new version.
+    client.change(uri, 2, insert_space(1)).await;
+    assert_eq!(client.diagnostics(uri, 2).await, first);
+    // A space before the finding moves it by one column.
+    client.change(uri, 3, insert_space(0)).await;
+    let moved = s101(&client.diagnostics(uri, 3).await);
+    let before = s101(&first);
+    assert_eq!(
+        moved["start"]["character"],
+        before["start"]["character"].as_u64().unwrap() + 1
+    );
+    // A non-ASCII character before it: UTF-16 columns differ from bytes and are not taken from before.
+    client
+        .change(uri, 4, json!([{"range": {"start": {"line": 0, "character": 0}, "end": {"line": 0, "character": 1}}, "text": "ä"}]))
+        .await;
+    assert_eq!(s101(&client.diagnostics(uri, 4).await), moved);
+    client.shutdown().await;
+}

@@ -123,26 +123,20 @@ fn severity(severity: Severity) -> DiagnosticSeverity {
     }
 }
 
-/// The body of a `textDocument/publishDiagnostics` notification for diagnostics sorted by line,
-/// reading each line's text once from `line_text` (not at all when `all_ascii` says the document is
-/// ASCII, where byte offsets are the columns in both encodings). Written directly as JSON text, in the shape of
-/// [`diagnostic_to_lsp`]: tens of thousands of diagnostics are published after every edit of a large
-/// program, and building LSP values first took several times as long.
-pub fn publish_diagnostics_body<'a>(
-    uri: &ls_types::Uri,
-    version: Option<i32>,
+/// The JSON array of diagnostics sorted by line, reading each line's text once from `line_text` (not
+/// at all when `all_ascii` says the document is ASCII, where byte offsets are the columns in both
+/// encodings). Written directly as JSON text, in the shape of [`diagnostic_to_lsp`]: tens of
+/// thousands of diagnostics are published after every edit of a large program, and building LSP
+/// values first took several times as long.
+pub fn diagnostics_json<'a>(
     diagnostics: &[LineDiagnostic],
     mut line_text: impl FnMut(usize) -> Cow<'a, str>,
     all_ascii: bool,
     encoding: PositionEncoding,
 ) -> Vec<u8> {
     use std::io::Write;
-    let mut body = Vec::with_capacity(256 + diagnostics.len() * 200);
-    body.extend_from_slice(
-        br#"{"jsonrpc":"2.0","method":"textDocument/publishDiagnostics","params":{"uri":"#,
-    );
-    let _ = serde_json::to_writer(&mut body, uri.as_str());
-    body.extend_from_slice(br#","diagnostics":["#);
+    let mut array = Vec::with_capacity(2 + diagnostics.len() * 200);
+    array.push(b'[');
     let mut current: Option<(usize, Cow<'a, str>)> = None;
     for (index, item) in diagnostics.iter().enumerate() {
         let range = if all_ascii {
@@ -170,10 +164,10 @@ pub fn publish_diagnostics_body<'a>(
             Severity::Hint => 4,
         };
         if index > 0 {
-            body.push(b',');
+            array.push(b',');
         }
         let _ = write!(
-            body,
+            array,
             r#"{{"range":{{"start":{{"line":{},"character":{}}},"end":{{"line":{},"character":{}}}}},"severity":{severity},"code":"{}","source":"sinumerik","message":"#,
             range.start.line,
             range.start.character,
@@ -181,10 +175,27 @@ pub fn publish_diagnostics_body<'a>(
             range.end.character,
             item.diagnostic.code.as_str(),
         );
-        let _ = serde_json::to_writer(&mut body, &item.diagnostic.message);
-        body.push(b'}');
+        let _ = serde_json::to_writer(&mut array, &item.diagnostic.message);
+        array.push(b'}');
     }
-    body.extend_from_slice(b"]");
+    array.push(b']');
+    array
+}
+
+/// The body of a `textDocument/publishDiagnostics` notification with the array of [`diagnostics_json`].
+pub fn publish_diagnostics_body(
+    uri: &ls_types::Uri,
+    version: Option<i32>,
+    diagnostics_array: &[u8],
+) -> Vec<u8> {
+    use std::io::Write;
+    let mut body = Vec::with_capacity(160 + diagnostics_array.len());
+    body.extend_from_slice(
+        br#"{"jsonrpc":"2.0","method":"textDocument/publishDiagnostics","params":{"uri":"#,
+    );
+    let _ = serde_json::to_writer(&mut body, uri.as_str());
+    body.extend_from_slice(br#","diagnostics":"#);
+    body.extend_from_slice(diagnostics_array);
     if let Some(version) = version {
         let _ = write!(body, r#","version":{version}"#);
     }
@@ -290,14 +301,13 @@ mod tests {
         ];
         let uri: ls_types::Uri = "file:///a%20b/c.mpf".parse().unwrap();
         for encoding in [PositionEncoding::Utf8, PositionEncoding::Utf16] {
-            let body = publish_diagnostics_body(
-                &uri,
-                Some(7),
+            let array = diagnostics_json(
                 &diagnostics,
                 |index| Cow::Borrowed(lines[index]),
                 false,
                 encoding,
             );
+            let body = publish_diagnostics_body(&uri, Some(7), &array);
             let written: serde_json::Value = serde_json::from_slice(&body).unwrap();
             let expected = ls_types::PublishDiagnosticsParams {
                 uri: uri.clone(),
@@ -312,17 +322,13 @@ mod tests {
         }
         // An ASCII document needs no line text: the same ranges come from the spans alone.
         let ascii_lines = ["N10 G0 Z=AC17 ; x", "N20 ?? X1"];
-        let from_text = publish_diagnostics_body(
-            &uri,
-            None,
+        let from_text = diagnostics_json(
             &diagnostics,
             |index| Cow::Borrowed(ascii_lines[index]),
             false,
             PositionEncoding::Utf16,
         );
-        let from_spans = publish_diagnostics_body(
-            &uri,
-            None,
+        let from_spans = diagnostics_json(
             &diagnostics,
             |_| unreachable!("no line is read"),
             true,
