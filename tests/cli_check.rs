@@ -188,12 +188,13 @@ fn missing_path_exits_2_but_other_files_are_checked() {
 
 #[test]
 fn usage_errors_exit_2() {
-    // Without arguments the binary is the language server (tests/lsp_*.rs).
+    // No arguments at all start the language server (tests/lsp_stdio.rs).
     for args in [
         vec!["check"],
         vec!["check", "--format", "xml", "x.mpf"],
         vec!["check", "--no-such-option", "x.mpf"],
         vec!["frobnicate"],
+        vec!["serve", "--bogus"],
     ] {
         let result = run(&args);
         assert_eq!(result.exit_code, 2, "{args:?}");

@@ -5,7 +5,7 @@
 #[path = "support/lsp_client.rs"]
 mod lsp_client;
 
-use lsp_client::{position_of, seed_text, TestClient};
+use lsp_client::{file_uri, position_of, seed_text, temp_folder, TestClient};
 use serde_json::{json, Value};
 use sinumerik_lsp::analysis::document::{DocumentAnalysis, TextLines};
 use sinumerik_lsp::analysis::ProgramKind;
@@ -201,26 +201,8 @@ async fn utf8_positions_count_bytes() {
     client.shutdown().await;
 }
 
-fn hint_labels(hints: &Value) -> Vec<(u64, String)> {
-    hints
-        .as_array()
-        .unwrap()
-        .iter()
-        .map(|hint| {
-            (
-                hint["position"]["line"].as_u64().unwrap(),
-                hint["label"].as_str().unwrap().to_string(),
-            )
-        })
-        .collect()
-}
-
 async fn inlay_hints(client: &mut TestClient, uri: &str) -> Vec<(u64, String)> {
-    let hints = client
-        .request("textDocument/inlayHint", json!({"textDocument": {"uri": uri}, "range": {"start": {"line": 0, "character": 0}, "end": {"line": 100, "character": 0}}}))
-        .await
-        .unwrap();
-    hint_labels(&hints)
+    client.inlay_hint_labels(uri, 0, 100).await
 }
 
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
@@ -277,5 +259,344 @@ async fn inlay_hints_show_end_points_that_are_not_plain_and_follow_the_setting()
     client.server_request("workspace/configuration").await;
     client.server_request("workspace/inlayHint/refresh").await;
     assert_eq!(inlay_hints(&mut client, SEED_URI).await, vec![]);
+    client.shutdown().await;
+}
+
+/// The CLI's `preview` JSON of a file.
+fn cli_preview(path: &std::path::Path) -> Value {
+    let output = std::process::Command::new(env!("CARGO_BIN_EXE_sinumerik-lsp"))
+        .arg("preview")
+        .arg(path)
+        .output()
+        .unwrap();
+    serde_json::from_slice(&output.stdout).unwrap()
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn the_preview_command_matches_the_cli_for_open_and_unopened_files() {
+    let mut client = initialized_client().await;
+    let seed_path = std::path::Path::new(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/fixtures/examples/turning_seed.mpf"
+    ));
+    let seed_uri = file_uri(seed_path);
+    client.open(&seed_uri, 1, &seed_text()).await;
+    let preview = client.preview(json!({"uri": seed_uri})).await.unwrap();
+    let expected = cli_preview(seed_path);
+    assert_eq!(preview["moves"], expected["moves"]);
+    assert_eq!(preview["diagnostics"], expected["diagnostics"]);
+    assert_eq!(preview["units"], "mm");
+    assert_eq!(preview["moves"].as_array().unwrap().len(), 4);
+
+    // A file that is not open, in Windows-1252, and only some of its lines.
+    let folder = temp_folder("preview");
+    let path = folder.join("CLOSED.MPF");
+    std::fs::write(
+        &path,
+        b"N10 G90 G0 X10 Z5 ; \xC4nderung\r\nN20 G91 X5\r\nN30 Z=AC17\r\n",
+    )
+    .unwrap();
+    let uri = file_uri(&path);
+    let preview = client.preview(json!({"uri": uri})).await.unwrap();
+    let expected = cli_preview(&path);
+    assert_eq!(preview["moves"], expected["moves"]);
+    assert_eq!(preview["diagnostics"], expected["diagnostics"]);
+    assert_eq!(preview["file"], path.display().to_string());
+    let part = client
+        .preview(json!({"uri": uri, "startLine": 1, "endLine": 1}))
+        .await
+        .unwrap();
+    assert_eq!(part["moves"], json!([expected["moves"][1]]));
+    assert_eq!(part["moves"][0]["end"], json!({"X": 15.0, "Z": 5.0}));
+    assert_eq!(part["diagnostics"], json!([]));
+
+    let missing = client
+        .preview(json!({"uri": file_uri(&folder.join("missing.mpf"))}))
+        .await
+        .unwrap_err();
+    assert!(
+        missing["message"].as_str().unwrap().contains("missing.mpf"),
+        "{missing}"
+    );
+    let _ = std::fs::remove_dir_all(&folder);
+    client.shutdown().await;
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn sinumerik_toml_is_found_from_the_documents_folder_upward() {
+    let folder = temp_folder("config");
+    std::fs::write(
+        folder.join("sinumerik.toml"),
+        "[diagnostics]\nS101 = \"hint\"\n",
+    )
+    .unwrap();
+    std::fs::create_dir_all(folder.join("sub")).unwrap();
+    let uri = file_uri(&folder.join("sub").join("part.mpf"));
+    let mut client = initialized_client().await;
+    client.open(&uri, 1, "N10 G0 Z=AC17\n").await;
+    let diagnostics = client.diagnostics(&uri, 1).await;
+    let s101 = diagnostics
+        .iter()
+        .find(|diagnostic| diagnostic["code"] == "S101")
+        .unwrap();
+    assert_eq!(s101["severity"], 4);
+
+    // A configuration file that cannot be read is reported on itself; the program is still checked.
+    let broken = temp_folder("broken-config");
+    std::fs::write(
+        broken.join("sinumerik.toml"),
+        "[machine]\nkind = \"drill\"\n",
+    )
+    .unwrap();
+    let uri = file_uri(&broken.join("part.mpf"));
+    client.open(&uri, 1, "N10 G0 Z=AC17\n").await;
+    let toml_uri = file_uri(&broken.join("sinumerik.toml"));
+    let config_diagnostics = client
+        .notification("textDocument/publishDiagnostics", |params| {
+            params["uri"] == toml_uri.as_str()
+        })
+        .await;
+    assert_eq!(
+        config_diagnostics["diagnostics"][0]["range"]["start"]["line"],
+        1
+    );
+    let diagnostics = client.diagnostics(&uri, 1).await;
+    assert_eq!(
+        diagnostics
+            .iter()
+            .find(|diagnostic| diagnostic["code"] == "S101")
+            .unwrap()["severity"],
+        1
+    );
+    let _ = std::fs::remove_dir_all(&folder);
+    let _ = std::fs::remove_dir_all(&broken);
+    client.shutdown().await;
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn settings_come_from_initialization_options() {
+    let mut client = TestClient::in_process();
+    client
+        .initialize(json!({}), json!({"inlayHints": "all"}))
+        .await;
+    client.open(SEED_URI, 1, &seed_text()).await;
+    assert_eq!(inlay_hints(&mut client, SEED_URI).await.len(), 4);
+    client.shutdown().await;
+}
+
+fn is_warning_about(params: &Value, words: &str) -> bool {
+    params["message"]
+        .as_str()
+        .is_some_and(|message| message.contains(words))
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn bad_requests_and_notifications_are_answered_or_logged_and_the_server_keeps_serving() {
+    let mut client = initialized_client().await;
+    let unknown = "file:///nonexistent/unknown.mpf";
+    let error = client
+        .request(
+            "textDocument/hover",
+            json!({"textDocument": {"uri": unknown}, "position": {"line": 0, "character": 0}}),
+        )
+        .await
+        .unwrap_err();
+    assert!(
+        error["message"].as_str().unwrap().contains("not open"),
+        "{error}"
+    );
+
+    client.change(unknown, 2, json!([{"text": "N10"}])).await;
+    client
+        .notification("window/logMessage", |params| {
+            is_warning_about(params, "not open")
+        })
+        .await;
+
+    client.open(SEED_URI, 5, &seed_text()).await;
+    client.diagnostics(SEED_URI, 5).await;
+    // A version going backwards is refused and the text stays.
+    client
+        .change(SEED_URI, 4, json!([{"text": "garbage"}]))
+        .await;
+    client
+        .notification("window/logMessage", |params| {
+            is_warning_about(params, "not newer")
+        })
+        .await;
+    assert_eq!(client.document_text(SEED_URI).await, (5, seed_text()));
+
+    // Positions past the end are clamped: the last line's end, and a line past the end.
+    client
+        .change(SEED_URI, 6, json!([{"range": {"start": {"line": 6, "character": 500}, "end": {"line": 6, "character": 900}}, "text": " ; end"}]))
+        .await;
+    let (_, text) = client.document_text(SEED_URI).await;
+    assert!(text.contains("M30 ; end\n"), "{text}");
+    let hover = client
+        .request("textDocument/hover", json!({"textDocument": {"uri": SEED_URI}, "position": {"line": 4000, "character": 4000}}))
+        .await;
+    assert_eq!(hover, Ok(Value::Null));
+    let hover = client.hover(SEED_URI, 3, 4000).await;
+    assert!(hover.contains("Modal state"), "{hover}");
+
+    // A cancelled request is answered (with its result or as cancelled) and the server goes on.
+    let id = client
+        .send_request(
+            "textDocument/hover",
+            json!({"textDocument": {"uri": SEED_URI}, "position": {"line": 3, "character": 9}}),
+        )
+        .await;
+    client.notify("$/cancelRequest", json!({"id": id})).await;
+    match client.response(id).await {
+        Ok(result) => assert!(result["contents"]["value"].as_str().unwrap().contains("Z")),
+        Err(error) => assert_eq!(error["code"], -32800),
+    }
+
+    // Malformed params, an unknown method, an unknown command, and bytes that are not JSON.
+    let error = client
+        .request("textDocument/hover", json!({"position": "nowhere"}))
+        .await
+        .unwrap_err();
+    assert_eq!(error["code"], -32602);
+    assert_eq!(
+        client
+            .request("sinumerik/nothing", json!({}))
+            .await
+            .unwrap_err()["code"],
+        -32601
+    );
+    let error = client
+        .request(
+            "workspace/executeCommand",
+            json!({"command": "rm", "arguments": []}),
+        )
+        .await
+        .unwrap_err();
+    assert!(error["message"]
+        .as_str()
+        .unwrap()
+        .contains("unknown command"));
+    let error = client.preview(json!({"url": 1})).await.unwrap_err();
+    assert_eq!(error["code"], -32602);
+    client
+        .notify("textDocument/didChange", json!({"textDocument": 17}))
+        .await;
+    client.send_raw(&lsp_client::frame(b"{not json")).await;
+    client.send_raw(&lsp_client::frame(b"\"\xff\xfe\"")).await;
+    client.send_raw(b"Content-Type: nothing\r\n\r\n").await;
+    // A range that ends before it starts cannot be applied: the document is dropped, loudly.
+    client
+        .change(SEED_URI, 7, json!([{"range": {"start": {"line": 2, "character": 5}, "end": {"line": 1, "character": 0}}, "text": "x"}]))
+        .await;
+    client
+        .notification("window/logMessage", |params| {
+            is_warning_about(params, "out of step")
+        })
+        .await;
+    client
+        .notification("textDocument/publishDiagnostics", |params| {
+            params["uri"] == SEED_URI && params["version"].is_null()
+        })
+        .await;
+    client.open(SEED_URI, 8, "N10 G0 Z=AC17\n").await;
+    let diagnostics = client.diagnostics(SEED_URI, 8).await;
+    assert!(diagnostics
+        .iter()
+        .any(|diagnostic| diagnostic["code"] == "S101"));
+    client
+        .notify(
+            "textDocument/didClose",
+            json!({"textDocument": {"uri": SEED_URI}}),
+        )
+        .await;
+    let cleared = client
+        .notification("textDocument/publishDiagnostics", |params| {
+            params["uri"] == SEED_URI && params["version"].is_null()
+        })
+        .await;
+    assert_eq!(cleared["diagnostics"], json!([]));
+    client
+        .notify(
+            "textDocument/didClose",
+            json!({"textDocument": {"uri": SEED_URI}}),
+        )
+        .await;
+    client
+        .notification("window/logMessage", |params| {
+            is_warning_about(params, "was closed but was not open")
+        })
+        .await;
+    client.shutdown().await;
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn thousands_of_rapid_edits_are_applied_in_order() {
+    let mut client = initialized_client().await;
+    let uri = "file:///nonexistent/rapid.mpf";
+    client.open(uri, 1, "").await;
+    let mut expected = String::new();
+    let mut random = lsp_client::Random::new(4711);
+    let pieces = [
+        "N10 ", "G1 ", "X", "1", "2", ".", "-", "Z=IC(", ")", " ", "\r\n", "\n", "ä", "😀", "F100",
+        ";",
+    ];
+    let edit_count = 5000;
+    for version in 2..2 + edit_count {
+        // Mostly typing at a random place; sometimes deleting a few characters.
+        let line = random.below(lsp_client::lsp_line_count(&expected)) as u32;
+        let column = random.below(lsp_client::lsp_line_length(&expected, line) as usize + 1) as u32;
+        let (end, text) = if random.below(6) == 0 {
+            ((line, column + random.below(4) as u32), "")
+        } else {
+            ((line, column), random.pick(&pieces))
+        };
+        client
+            .change(uri, version, json!([{"range": {"start": {"line": line, "character": column}, "end": {"line": end.0, "character": end.1}}, "text": text}]))
+            .await;
+        lsp_client::apply_edit(&mut expected, (line, column), end, text);
+    }
+    let last_version = 1 + edit_count;
+    assert_eq!(
+        client.document_text(uri).await,
+        (last_version, expected.clone())
+    );
+    let diagnostics = client.diagnostics(uri, last_version).await;
+    assert_eq!(
+        codes(&diagnostics),
+        expected_codes(&expected, ProgramKind::Main)
+    );
+    client.shutdown().await;
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn every_version_gets_its_diagnostics_also_when_they_did_not_change() {
+    let mut client = initialized_client().await;
+    let uri = "file:///nonexistent/ascii.mpf";
+    client.open(uri, 1, "N10 G0 Z=AC17\nN20 X1\n").await;
+    let first = client.diagnostics(uri, 1).await;
+    let s101 = |diagnostics: &[Value]| {
+        diagnostics
+            .iter()
+            .find(|diagnostic| diagnostic["code"] == "S101")
+            .map(|diagnostic| diagnostic["range"].clone())
+            .expect("S101")
+    };
+    let insert_space = |line: u32| json!([{"range": {"start": {"line": line, "character": 0}, "end": {"line": line, "character": 0}}, "text": " "}]);
+    // A space on the other line: the same diagnostics, published again for the new version.
+    client.change(uri, 2, insert_space(1)).await;
+    assert_eq!(client.diagnostics(uri, 2).await, first);
+    // A space before the finding moves it by one column.
+    client.change(uri, 3, insert_space(0)).await;
+    let moved = s101(&client.diagnostics(uri, 3).await);
+    let before = s101(&first);
+    assert_eq!(
+        moved["start"]["character"],
+        before["start"]["character"].as_u64().unwrap() + 1
+    );
+    // A non-ASCII character before it: UTF-16 columns differ from bytes and are not taken from before.
+    client
+        .change(uri, 4, json!([{"range": {"start": {"line": 0, "character": 0}, "end": {"line": 0, "character": 1}}, "text": "ä"}]))
+        .await;
+    assert_eq!(s101(&client.diagnostics(uri, 4).await), moved);
     client.shutdown().await;
 }

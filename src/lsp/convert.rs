@@ -123,25 +123,84 @@ fn severity(severity: Severity) -> DiagnosticSeverity {
     }
 }
 
-/// Converts diagnostics sorted by line, reading each line's text once from `line_text`.
-pub fn diagnostics_to_lsp<'a>(
+/// The JSON array of diagnostics sorted by line, reading each line's text once from `line_text` (not
+/// at all when `all_ascii` says the document is ASCII, where byte offsets are the columns in both
+/// encodings). Written directly as JSON text, in the shape of [`diagnostic_to_lsp`]: tens of
+/// thousands of diagnostics are published after every edit of a large program, and building LSP
+/// values first took several times as long.
+pub fn diagnostics_json<'a>(
     diagnostics: &[LineDiagnostic],
     mut line_text: impl FnMut(usize) -> Cow<'a, str>,
+    all_ascii: bool,
     encoding: PositionEncoding,
-) -> Vec<ls_types::Diagnostic> {
-    let mut converted = Vec::with_capacity(diagnostics.len());
+) -> Vec<u8> {
+    use std::io::Write;
+    let mut array = Vec::with_capacity(2 + diagnostics.len() * 200);
+    array.push(b'[');
     let mut current: Option<(usize, Cow<'a, str>)> = None;
-    for item in diagnostics {
-        if current.as_ref().map(|(line_idx, _)| *line_idx) != Some(item.line) {
-            current = Some((item.line, line_text(item.line)));
+    for (index, item) in diagnostics.iter().enumerate() {
+        let range = if all_ascii {
+            let line_number = u32::try_from(item.line).unwrap_or(u32::MAX);
+            let span = item.diagnostic.span;
+            let column = |byte: usize| u32::try_from(byte).unwrap_or(u32::MAX);
+            Range::new(
+                Position::new(line_number, column(span.start())),
+                Position::new(line_number, column(span.end().max(span.start()))),
+            )
+        } else {
+            if current.as_ref().map(|(line_idx, _)| *line_idx) != Some(item.line) {
+                current = Some((item.line, line_text(item.line)));
+            }
+            let line = current
+                .as_ref()
+                .map(|(_, text)| text.as_ref())
+                .unwrap_or("");
+            span_to_range(item.line, line, item.diagnostic.span, encoding)
+        };
+        let severity = match item.diagnostic.severity {
+            Severity::Error => 1,
+            Severity::Warning => 2,
+            Severity::Information => 3,
+            Severity::Hint => 4,
+        };
+        if index > 0 {
+            array.push(b',');
         }
-        let line = current
-            .as_ref()
-            .map(|(_, text)| text.as_ref())
-            .unwrap_or("");
-        converted.push(diagnostic_to_lsp(item, line, encoding));
+        let _ = write!(
+            array,
+            r#"{{"range":{{"start":{{"line":{},"character":{}}},"end":{{"line":{},"character":{}}}}},"severity":{severity},"code":"{}","source":"sinumerik","message":"#,
+            range.start.line,
+            range.start.character,
+            range.end.line,
+            range.end.character,
+            item.diagnostic.code.as_str(),
+        );
+        let _ = serde_json::to_writer(&mut array, &item.diagnostic.message);
+        array.push(b'}');
     }
-    converted
+    array.push(b']');
+    array
+}
+
+/// The body of a `textDocument/publishDiagnostics` notification with the array of [`diagnostics_json`].
+pub fn publish_diagnostics_body(
+    uri: &ls_types::Uri,
+    version: Option<i32>,
+    diagnostics_array: &[u8],
+) -> Vec<u8> {
+    use std::io::Write;
+    let mut body = Vec::with_capacity(160 + diagnostics_array.len());
+    body.extend_from_slice(
+        br#"{"jsonrpc":"2.0","method":"textDocument/publishDiagnostics","params":{"uri":"#,
+    );
+    let _ = serde_json::to_writer(&mut body, uri.as_str());
+    body.extend_from_slice(br#","diagnostics":"#);
+    body.extend_from_slice(diagnostics_array);
+    if let Some(version) = version {
+        let _ = write!(body, r#","version":{version}"#);
+    }
+    body.extend_from_slice(b"}}");
+    body
 }
 
 /// One diagnostic, with `line` the text of its line.
@@ -216,6 +275,66 @@ mod tests {
         assert_eq!(at(1, 6, PositionEncoding::Utf8), 4 + 3);
         assert_eq!(at(1, 7, PositionEncoding::Utf8), 4 + 4);
         assert_eq!(at(7, 0, PositionEncoding::Utf16), rope.len_chars());
+    }
+
+    #[test]
+    fn the_written_notification_equals_the_lsp_types_serialization() {
+        use crate::diagnostics::{Code, Diagnostic};
+        let lines = ["N10 G0 Z=AC17 ; \"quoted\" ä", "N20 😀 X\t1"];
+        let diagnostics = vec![
+            LineDiagnostic {
+                line: 0,
+                diagnostic: Diagnostic::new(
+                    Code::ModifierWithoutParentheses,
+                    Span::new(9, 13),
+                    "write `AC(17)` \"now\"\n",
+                ),
+            },
+            LineDiagnostic {
+                line: 1,
+                diagnostic: Diagnostic::new(
+                    Code::UnexpectedCharacter,
+                    Span::new(4, 8),
+                    "ünexpected",
+                ),
+            },
+        ];
+        let uri: ls_types::Uri = "file:///a%20b/c.mpf".parse().unwrap();
+        for encoding in [PositionEncoding::Utf8, PositionEncoding::Utf16] {
+            let array = diagnostics_json(
+                &diagnostics,
+                |index| Cow::Borrowed(lines[index]),
+                false,
+                encoding,
+            );
+            let body = publish_diagnostics_body(&uri, Some(7), &array);
+            let written: serde_json::Value = serde_json::from_slice(&body).unwrap();
+            let expected = ls_types::PublishDiagnosticsParams {
+                uri: uri.clone(),
+                diagnostics: diagnostics
+                    .iter()
+                    .map(|item| diagnostic_to_lsp(item, lines[item.line], encoding))
+                    .collect(),
+                version: Some(7),
+            };
+            assert_eq!(written["params"], serde_json::to_value(&expected).unwrap());
+            assert_eq!(written["method"], "textDocument/publishDiagnostics");
+        }
+        // An ASCII document needs no line text: the same ranges come from the spans alone.
+        let ascii_lines = ["N10 G0 Z=AC17 ; x", "N20 ?? X1"];
+        let from_text = diagnostics_json(
+            &diagnostics,
+            |index| Cow::Borrowed(ascii_lines[index]),
+            false,
+            PositionEncoding::Utf16,
+        );
+        let from_spans = diagnostics_json(
+            &diagnostics,
+            |_| unreachable!("no line is read"),
+            true,
+            PositionEncoding::Utf16,
+        );
+        assert_eq!(from_text, from_spans);
     }
 
     #[test]

@@ -8,7 +8,8 @@
 use crate::analysis::document::{DocumentAnalysis, LineSource};
 use crate::analysis::ProgramKind;
 use crate::config::MachineConfig;
-use crate::lsp::convert::{diagnostics_to_lsp, PositionEncoding};
+use crate::diagnostics::LineDiagnostic;
+use crate::lsp::convert::{diagnostics_json, publish_diagnostics_body, PositionEncoding};
 use crate::lsp::log;
 use crate::lsp::outgoing::{Outgoing, OutgoingSender};
 use crate::lsp::text_document::{
@@ -69,6 +70,17 @@ pub struct OpenDocument {
     pub kind: ProgramKind,
     text: Mutex<TextState>,
     analysis: Mutex<Option<Analysed>>,
+    /// The diagnostics last written, for the worker only.
+    published: Mutex<Option<Published>>,
+}
+
+/// Diagnostics as last written. In an ASCII document the text of a diagnostic depends only on the
+/// diagnostic (columns are byte offsets), so an edit that leaves every diagnostic as it was (most
+/// keystrokes in a large program) reuses the text and only the version changes.
+struct Published {
+    diagnostics: Vec<LineDiagnostic>,
+    encoding: PositionEncoding,
+    array: Arc<Vec<u8>>,
 }
 
 /// What a worker needs besides the document.
@@ -100,7 +112,33 @@ impl OpenDocument {
                 closed: false,
             }),
             analysis: Mutex::new(None),
+            published: Mutex::new(None),
         }
+    }
+
+    /// The JSON array of the analysis's diagnostics, reused from the last time when it still holds.
+    fn diagnostics_array(&self, analysed: &Analysed, encoding: PositionEncoding) -> Arc<Vec<u8>> {
+        let diagnostics = analysed.analysis.diagnostics();
+        let all_ascii = analysed.rope.len_bytes() == analysed.rope.len_chars();
+        let mut published = lock(&self.published);
+        if let Some(last) = published.as_ref() {
+            if all_ascii && last.encoding == encoding && last.diagnostics == diagnostics {
+                return Arc::clone(&last.array);
+            }
+        }
+        let lines = analysed.lines();
+        let array = Arc::new(diagnostics_json(
+            diagnostics,
+            |line_idx| lines.line(line_idx),
+            all_ascii,
+            encoding,
+        ));
+        *published = all_ascii.then(|| Published {
+            diagnostics: diagnostics.to_vec(),
+            encoding,
+            array: Arc::clone(&array),
+        });
+        array
     }
 
     /// The current revision; a request remembers it to know whether its answer is still current.
@@ -238,23 +276,28 @@ impl OpenDocument {
             let started = std::time::Instant::now();
             let result = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
                 let slot = self.catch_up();
+                let analysed_in = started.elapsed();
                 slot.as_ref().map(|analysed| {
-                    let lines = analysed.lines();
-                    let diagnostics = diagnostics_to_lsp(
-                        analysed.analysis.diagnostics(),
-                        |line_idx| lines.line(line_idx),
-                        context.encoding,
-                    );
-                    (analysed.revision, analysed.version, diagnostics)
+                    let array = self.diagnostics_array(analysed, context.encoding);
+                    let body = publish_diagnostics_body(&self.uri, Some(analysed.version), &array);
+                    let count = analysed.analysis.diagnostics().len();
+                    (analysed.revision, body, count, analysed_in)
                 })
             }));
-            log::slow(
-                "analysis and diagnostics",
-                started.elapsed(),
-                &context.outgoing,
-            );
+            if let Ok(Some((_, _, count, analysed_in))) = &result {
+                log::slow_with_sender(
+                    || {
+                        format!(
+                            "analysis ({} ms) and writing of {count} diagnostics",
+                            analysed_in.as_millis()
+                        )
+                    },
+                    started.elapsed(),
+                    &context.outgoing,
+                );
+            }
             match result {
-                Ok(Some((revision, version, diagnostics))) => {
+                Ok(Some((revision, body, _, _))) => {
                     let mut text = lock(&self.text);
                     if text.closed {
                         text.worker_running = false;
@@ -262,11 +305,7 @@ impl OpenDocument {
                     }
                     if text.revision == revision {
                         // Sent under the lock: a newer revision's publication cannot overtake it.
-                        context.outgoing.send(Outgoing::Diagnostics {
-                            uri: self.uri.clone(),
-                            version: Some(version),
-                            diagnostics,
-                        });
+                        context.outgoing.send_body(body);
                         text.worker_running = false;
                         return;
                     }

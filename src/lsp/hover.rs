@@ -100,7 +100,7 @@ fn axis_hover(
         Some(resolution) => resolution.clone(),
         None => resolution_from_movement(word, axis, line_words, report, config),
     };
-    let mut text = explain_resolution(&resolution, &report.before, config);
+    let mut text = explain_resolution(&resolution, &report.after, config);
     if report.before.flow_uncertain {
         text.push_str("\n\n⚠ A label, jump or loop comes before this block: the control may run another path than program order, so these values may not be the control's.");
     }
@@ -132,7 +132,8 @@ fn resolution_from_movement(
     } else if let Some((name, _)) = word.modifier() {
         Modifier::from_name(name).map_or(ResolutionMode::Unknown, ResolutionMode::Override)
     } else {
-        match report.before.distance.as_deref() {
+        // The block's own G functions apply to its words: the state in effect is the one after it.
+        match report.after.distance.as_deref() {
             Some("G90") => ResolutionMode::Absolute,
             Some("G91") => ResolutionMode::Incremental,
             _ => ResolutionMode::Unknown,
@@ -142,7 +143,7 @@ fn resolution_from_movement(
     let unit_factor = if axis_kind.is_some_and(AxisKind::is_rotary) {
         Some(1.0)
     } else {
-        match report.before.units.as_deref() {
+        match report.after.units.as_deref() {
             Some("G70" | "G700") => Some(if config.metric { 25.4 } else { 1.0 }),
             Some("G71" | "G710") => Some(if config.metric { 1.0 } else { 1.0 / 25.4 }),
             _ => None,
@@ -151,10 +152,7 @@ fn resolution_from_movement(
     let end = movement.and_then(|movement| lookup(&movement.end));
     let start = movement.and_then(|movement| lookup(&movement.start));
     let unknown_reason = end.is_none().then(|| {
-        if (matches!(mode, ResolutionMode::Incremental)
-            || matches!(mode, ResolutionMode::Override(Modifier::Ic)))
-            && start.is_none()
-        {
+        if is_incremental(mode) && start.is_none() {
             return "the move is incremental and the axis position before the block is not known"
                 .to_string();
         }
@@ -170,6 +168,7 @@ fn resolution_from_movement(
             && movement.is_some_and(|movement| movement.transverse_as_diameter),
         shown_as_diameter: axis_kind == Some(AxisKind::Transverse)
             && movement.is_some_and(|movement| movement.transverse_as_diameter),
+        // Built from the move alone: the arithmetic is not checked, so it is not spelled out.
         explained: false,
         start,
         end,
@@ -190,8 +189,9 @@ fn is_incremental(mode: ResolutionMode) -> bool {
     )
 }
 
-fn mode_note(mode: ResolutionMode, before: &StateSummary) -> String {
-    let modal = before.distance.as_deref().unwrap_or("the modal G90/G91");
+/// `in_effect` is the modal state that applies to the block's words (after its own G functions).
+fn mode_note(mode: ResolutionMode, in_effect: &StateSummary) -> String {
+    let modal = in_effect.distance.as_deref().unwrap_or("the modal G90/G91");
     match mode {
         ResolutionMode::Absolute => "G90: absolute".to_string(),
         ResolutionMode::Incremental => "G91: incremental".to_string(),
@@ -226,16 +226,17 @@ fn mode_note(mode: ResolutionMode, before: &StateSummary) -> String {
     }
 }
 
-/// The explanation of one resolved word, e.g. `Z = 90.000 + (-32.000) = **58.000** mm (IC: ...)`.
+/// The explanation of one resolved word, e.g. `Z = 90.000 + (-32.000) = **58.000** mm (IC: ...)`;
+/// `in_effect` is the modal state that applies to the block's words.
 pub fn explain_resolution(
     resolution: &WordResolution,
-    before: &StateSummary,
+    in_effect: &StateSummary,
     config: &MachineConfig,
 ) -> String {
     let axis = &resolution.axis;
     let axis_kind = config.axis(axis).map(|axis| axis.kind);
     let unit = units_label(config, axis_kind);
-    let note = mode_note(resolution.mode, before);
+    let note = mode_note(resolution.mode, in_effect);
     let mut text = String::new();
     let Some(end) = resolution.end else {
         let reason = resolution
@@ -290,7 +291,7 @@ pub fn explain_resolution(
             let _ = write!(text, "{formula} ({note})");
         }
         None => match resolution.start {
-            Some(start) if !same(start, end) => {
+            Some(start) if is_incremental(resolution.mode) && !same(start, end) => {
                 let _ = write!(
                     text,
                     "{axis}: {} → **{}** {unit} ({note})",

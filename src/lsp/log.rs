@@ -28,7 +28,18 @@ pub fn slow(what: &str, elapsed: Duration, outgoing: &OutgoingSender) {
     }
 }
 
-/// Logs on stderr only, for the sender task itself.
+/// Like [`slow`], with the description made only when it is needed.
+pub fn slow_with_sender(
+    what: impl FnOnce() -> String,
+    elapsed: Duration,
+    outgoing: &OutgoingSender,
+) {
+    if elapsed > SLOW {
+        slow(&what(), elapsed, outgoing);
+    }
+}
+
+/// Logs on stderr only, for the output itself.
 pub fn slow_with(what: impl FnOnce() -> String, elapsed: Duration) {
     if elapsed > SLOW {
         to_stderr(

@@ -9,13 +9,16 @@
 //! - `hover.rs`, `inlay.rs`, `code_action.rs`, `endpoint_preview.rs`: one feature each.
 //! - `words.rs`: where the words of a block are, for the cursor; `gcode_help.rs`: G-function texts.
 //! - `settings.rs`: settings and each document's machine configuration; `ext.rs`: own protocol types.
-//! - `outgoing.rs`, `log.rs`: ordered messages to the client, logging, slow-handler reports.
+//! - `outgoing.rs`: all output; the server's own notifications serialized straight to text.
+//! - `log.rs`: logging and slow-handler reports.
+//! - `framing.rs`: drops malformed messages before they reach the framework's reader.
 
 mod code_action;
 mod convert;
 mod documents;
 mod endpoint_preview;
 mod ext;
+mod framing;
 mod gcode_help;
 mod hover;
 mod inlay;
@@ -37,13 +40,18 @@ use tower_lsp_server::{LspService, Server};
 /// Serves the protocol on `input` and `output` until the client sends `exit` or closes the input.
 pub async fn serve<I, O>(input: I, output: O)
 where
-    I: AsyncRead + Unpin,
-    O: AsyncWrite,
+    I: AsyncRead + Unpin + Send + 'static,
+    O: AsyncWrite + Unpin + Send + 'static,
 {
-    let (service, socket) = LspService::build(server::Backend::new)
+    let input = framing::guard_input(input);
+    let (outgoing, framework_output, output_tasks) = outgoing::start(output);
+    let (service, socket) = LspService::build(move |client| server::Backend::new(client, outgoing))
         .custom_method(ext::DOCUMENT_TEXT_REQUEST, server::Backend::document_text)
         .finish();
-    Server::new(input, output, socket).serve(service).await;
+    Server::new(input, framework_output, socket)
+        .serve(service)
+        .await;
+    output_tasks.finish().await;
 }
 
 /// Runs the server on the process's stdin and stdout; returns the exit code.
@@ -61,5 +69,10 @@ pub fn serve_stdio() -> u8 {
     runtime.block_on(serve(tokio::io::stdin(), tokio::io::stdout()));
     // Analyses still running in the blocking pool are not waited for: the client has gone.
     runtime.shutdown_timeout(std::time::Duration::from_millis(100));
-    0
+    // The protocol's exit code: 0 after `shutdown`, 1 when the client left without it.
+    if server::SHUTDOWN_REQUESTED.load(std::sync::atomic::Ordering::SeqCst) {
+        0
+    } else {
+        1
+    }
 }

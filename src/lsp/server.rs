@@ -14,20 +14,24 @@ use crate::lsp::ext::{
 use crate::lsp::hover::hover;
 use crate::lsp::inlay::inlay_hints;
 use crate::lsp::log::HandlerTimer;
-use crate::lsp::outgoing::{self, Outgoing, OutgoingSender};
+use crate::lsp::outgoing::{Outgoing, OutgoingSender};
 use crate::lsp::settings::{machine_config_for, Settings};
 use crate::lsp::text_document::ChangeError;
 use serde_json::Value;
 use std::path::{Path, PathBuf};
 use std::sync::{Arc, Mutex};
 use std::time::Duration;
-use tokio::sync::mpsc::UnboundedReceiver;
 use tower_lsp_server::jsonrpc::{Error, ErrorCode, Result};
 use tower_lsp_server::ls_types::*;
 use tower_lsp_server::{Client, LanguageServer};
 
 /// How long the server waits for the client's answer to `workspace/configuration`.
 const CONFIGURATION_TIMEOUT: Duration = Duration::from_secs(10);
+
+/// Set by `shutdown`: the process's exit code depends on it (the protocol asks for 1 when the client
+/// exits without shutting the server down first). One server runs per process.
+pub static SHUTDOWN_REQUESTED: std::sync::atomic::AtomicBool =
+    std::sync::atomic::AtomicBool::new(false);
 
 /// What the client told at initialize.
 #[derive(Debug, Clone, Default)]
@@ -45,7 +49,6 @@ pub struct Shared {
     settings: Mutex<Settings>,
     info: Mutex<ClientInfo>,
     outgoing: OutgoingSender,
-    outgoing_receiver: Mutex<Option<UnboundedReceiver<Outgoing>>>,
 }
 
 fn content_modified() -> Error {
@@ -98,15 +101,13 @@ impl std::ops::Deref for Backend {
 }
 
 impl Backend {
-    pub fn new(client: Client) -> Backend {
-        let (sender, receiver) = outgoing::channel();
+    pub fn new(client: Client, outgoing: OutgoingSender) -> Backend {
         let shared = Shared {
             client,
             documents: Documents::default(),
             settings: Mutex::new(Settings::default()),
             info: Mutex::new(ClientInfo::default()),
-            outgoing: sender,
-            outgoing_receiver: Mutex::new(Some(receiver)),
+            outgoing,
         };
         Backend {
             shared: Arc::new(shared),
@@ -291,9 +292,6 @@ impl LanguageServer for Backend {
                 self.warn(format!("initializationOptions: {message}"));
             }
         }
-        if let Some(receiver) = lock(&self.outgoing_receiver).take() {
-            tokio::spawn(outgoing::forward(self.client.clone(), receiver));
-        }
         Ok(InitializeResult {
             capabilities: ServerCapabilities {
                 position_encoding: Some(encoding.kind()),
@@ -333,6 +331,7 @@ impl LanguageServer for Backend {
     }
 
     async fn shutdown(&self) -> Result<()> {
+        SHUTDOWN_REQUESTED.store(true, std::sync::atomic::Ordering::SeqCst);
         Ok(())
     }
 

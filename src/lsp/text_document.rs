@@ -5,6 +5,7 @@ use crate::analysis::document::LineSource;
 use crate::lsp::convert::{position_to_char, PositionEncoding};
 use ropey::Rope;
 use std::borrow::Cow;
+use std::cell::RefCell;
 use std::fmt;
 use tower_lsp_server::ls_types::TextDocumentContentChangeEvent;
 
@@ -194,9 +195,12 @@ pub fn line_without_terminator(rope: &Rope, line_idx: usize) -> ropey::RopeSlice
 }
 
 /// A rope snapshot read by the analysis: lines without terminators, counted as the core counts them.
+/// The analysis mostly reads lines in order, so the last position is kept: the next line then comes
+/// from ropey's line iterator instead of a lookup from the root for every line.
 pub struct RopeLines<'a> {
     rope: &'a Rope,
     line_count: usize,
+    cursor: RefCell<Option<(usize, ropey::iter::Lines<'a>)>>,
 }
 
 impl<'a> RopeLines<'a> {
@@ -204,6 +208,7 @@ impl<'a> RopeLines<'a> {
         RopeLines {
             rope,
             line_count: core_line_count(rope),
+            cursor: RefCell::new(None),
         }
     }
 }
@@ -217,12 +222,39 @@ impl LineSource for RopeLines<'_> {
         if index >= self.line_count {
             return Cow::Borrowed("");
         }
-        let line = line_without_terminator(self.rope, index);
+        let mut cursor = self.cursor.borrow_mut();
+        let line = match cursor.as_mut() {
+            Some((next, lines)) if *next == index => {
+                *next += 1;
+                lines.next()
+            }
+            _ => {
+                let mut lines = self.rope.lines_at(index);
+                let line = lines.next();
+                *cursor = Some((index + 1, lines));
+                line
+            }
+        };
+        let Some(line) = line else {
+            return Cow::Borrowed("");
+        };
+        // Most lines lie within one chunk of the rope and are borrowed as they are.
         match line.as_str() {
-            Some(text) => Cow::Borrowed(text),
-            None => Cow::Owned(line.to_string()),
+            Some(text) => Cow::Borrowed(strip_terminator(text)),
+            None => {
+                let mut text = line.to_string();
+                let length = strip_terminator(&text).len();
+                text.truncate(length);
+                Cow::Owned(text)
+            }
         }
     }
+}
+
+/// A line's text without its LF, CRLF or CR.
+fn strip_terminator(line: &str) -> &str {
+    let line = line.strip_suffix('\n').unwrap_or(line);
+    line.strip_suffix('\r').unwrap_or(line)
 }
 
 #[cfg(test)]

@@ -313,6 +313,18 @@ impl TestClient {
     }
 }
 
+impl TestClient {
+    /// Waits for the binary to end (after `exit`) and returns its exit code.
+    pub async fn wait_for_exit(mut self) -> Option<i32> {
+        let mut child = self.child.take()?;
+        let status = tokio::time::timeout(TIMEOUT, child.wait())
+            .await
+            .expect("the binary exits")
+            .unwrap();
+        status.code()
+    }
+}
+
 fn is_response(message: &Value, id: i64) -> bool {
     message.get("method").is_none() && message["id"] == id
 }
@@ -361,4 +373,137 @@ pub fn position_of(text: &str, needle: &str) -> (u32, u32) {
         line as u32,
         before[line_start..].encode_utf16().count() as u32,
     )
+}
+
+/// The byte offset of an LSP position (UTF-16 columns) in `text`, clamped as the protocol's
+/// servers clamp: past the end of a line is its end, past the last line is the end of the text,
+/// inside a surrogate pair is the start of the character. Lines end at LF, CRLF or CR.
+pub fn byte_offset(text: &str, line: u32, character: u32) -> usize {
+    let bytes = text.as_bytes();
+    let mut line_start = 0;
+    for _ in 0..line {
+        match bytes[line_start..]
+            .iter()
+            .position(|&byte| byte == b'\n' || byte == b'\r')
+        {
+            Some(offset) => {
+                let terminator = line_start + offset;
+                line_start = terminator
+                    + if bytes[terminator] == b'\r' && bytes.get(terminator + 1) == Some(&b'\n') {
+                        2
+                    } else {
+                        1
+                    };
+            }
+            None => return text.len(),
+        }
+    }
+    let line_end = bytes[line_start..]
+        .iter()
+        .position(|&byte| byte == b'\n' || byte == b'\r')
+        .map_or(text.len(), |offset| line_start + offset);
+    let mut units = 0;
+    for (offset, ch) in text[line_start..line_end].char_indices() {
+        let next = units + ch.len_utf16() as u32;
+        if next > character {
+            return line_start + offset;
+        }
+        units = next;
+    }
+    line_end
+}
+
+/// Applies one LSP edit to `text` the way the protocol defines it.
+pub fn apply_edit(text: &mut String, start: (u32, u32), end: (u32, u32), new_text: &str) {
+    let start = byte_offset(text, start.0, start.1);
+    let end = byte_offset(text, end.0, end.1).max(start);
+    text.replace_range(start..end, new_text);
+}
+
+/// A small deterministic pseudo-random generator (xorshift64*), so failures repeat.
+pub struct Random(u64);
+
+impl Random {
+    pub fn new(seed: u64) -> Random {
+        Random(seed.max(1))
+    }
+
+    pub fn next(&mut self) -> u64 {
+        self.0 ^= self.0 >> 12;
+        self.0 ^= self.0 << 25;
+        self.0 ^= self.0 >> 27;
+        self.0.wrapping_mul(0x2545_F491_4F6C_DD1D)
+    }
+
+    /// A number in `0..bound` (0 when `bound` is 0).
+    pub fn below(&mut self, bound: usize) -> usize {
+        if bound == 0 {
+            0
+        } else {
+            (self.next() % bound as u64) as usize
+        }
+    }
+
+    pub fn pick<'a>(&mut self, items: &[&'a str]) -> &'a str {
+        items[self.below(items.len())]
+    }
+}
+
+/// The number of LSP lines of a text (at least one).
+pub fn lsp_line_count(text: &str) -> usize {
+    1 + text.matches('\n').count() + text.matches('\r').count() - text.matches("\r\n").count()
+}
+
+/// The UTF-16 length of LSP line `line` of `text`.
+pub fn lsp_line_length(text: &str, line: u32) -> u32 {
+    let start = byte_offset(text, line, 0);
+    let end = byte_offset(text, line, u32::MAX);
+    text[start..end].encode_utf16().count() as u32
+}
+
+impl TestClient {
+    /// `sinumerik.endpointPreview` with one argument object (`{"uri", "startLine"?, "endLine"?}`).
+    pub async fn preview(&mut self, argument: Value) -> Result<Value, Value> {
+        self.request(
+            "workspace/executeCommand",
+            json!({"command": "sinumerik.endpointPreview", "arguments": [argument]}),
+        )
+        .await
+    }
+
+    /// The inlay hints of lines `first ..= last` as (line, label).
+    pub async fn inlay_hint_labels(
+        &mut self,
+        uri: &str,
+        first: u32,
+        last: u32,
+    ) -> Vec<(u64, String)> {
+        let hints = self
+            .request(
+                "textDocument/inlayHint",
+                json!({"textDocument": {"uri": uri}, "range": {"start": {"line": first, "character": 0}, "end": {"line": last, "character": 0}}}),
+            )
+            .await
+            .expect("inlay hints succeed");
+        hints
+            .as_array()
+            .expect("a list of hints")
+            .iter()
+            .map(|hint| {
+                (
+                    hint["position"]["line"].as_u64().unwrap(),
+                    hint["label"].as_str().unwrap().to_string(),
+                )
+            })
+            .collect()
+    }
+}
+
+/// An empty folder of its own for one test.
+pub fn temp_folder(name: &str) -> std::path::PathBuf {
+    let folder =
+        std::env::temp_dir().join(format!("sinumerik-lsp-test-{}-{name}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&folder);
+    std::fs::create_dir_all(&folder).unwrap();
+    folder
 }

@@ -1,0 +1,446 @@
+//! Latency of the language server as an editor sees it: the release binary driven over stdio with
+//! 1,000,000-line programs from `../shared/bench/gen_program.py` (`cam3d` and `inc`).
+//!
+//! Prints, per program: didOpen to the first publishDiagnostics (timed from when the message starts
+//! to go out, after the client's own JSON encoding); a one-character edit on a random line to the
+//! publishDiagnostics of that version (median and p99) — a space at the start of a line of `cam3d`
+//! (meaning unchanged) and a changed coordinate digit in `inc` (every later position moves); hover
+//! median and p99; the server's resident memory; and what the diagnostics cost to serialize and send.
+//!
+//! Run with `cargo bench --bench lsp_latency`. `BENCH_LINES` (default 1,000,000), `BENCH_EDITS` and
+//! `BENCH_HOVERS` (default 200 each) and `BENCH_BUDGET_SECS` (default 240, per measurement: a slow
+//! server is measured on fewer samples, and the count is printed) change the run.
+
+use serde_json::{json, Value};
+use std::io::{BufRead, BufReader, Read, Write};
+use std::process::{Child, ChildStdin, Command, Stdio};
+use std::sync::mpsc;
+use std::thread;
+use std::time::{Duration, Instant};
+
+#[path = "../tests/support/generated.rs"]
+mod generated;
+
+const TIMEOUT: Duration = Duration::from_secs(600);
+
+/// A message from the server with the moment its last byte arrived.
+struct Arrival {
+    at: Instant,
+    bytes: usize,
+    message: Value,
+}
+
+struct Server {
+    child: Child,
+    stdin: ChildStdin,
+    arrivals: mpsc::Receiver<Arrival>,
+    next_id: i64,
+}
+
+fn frame(value: &Value) -> Vec<u8> {
+    let body = serde_json::to_vec(value).unwrap();
+    let mut message = format!("Content-Length: {}\r\n\r\n", body.len()).into_bytes();
+    message.extend_from_slice(&body);
+    message
+}
+
+impl Server {
+    fn start() -> Server {
+        let mut child = Command::new(env!("CARGO_BIN_EXE_sinumerik-lsp"))
+            .stdin(Stdio::piped())
+            .stdout(Stdio::piped())
+            // The server's log says how long its analyses and diagnostics took (when over 100 ms).
+            .stderr(Stdio::from(
+                std::fs::File::create(log_path()).expect("the log file can be created"),
+            ))
+            .spawn()
+            .expect("the server binary starts");
+        let stdin = child.stdin.take().unwrap();
+        let stdout = child.stdout.take().unwrap();
+        let (sender, arrivals) = mpsc::channel();
+        thread::spawn(move || {
+            let mut reader = BufReader::with_capacity(1 << 20, stdout);
+            loop {
+                let mut length = 0;
+                loop {
+                    let mut header = String::new();
+                    if reader.read_line(&mut header).unwrap_or(0) == 0 {
+                        return;
+                    }
+                    let header = header.trim_end();
+                    if header.is_empty() {
+                        break;
+                    }
+                    if let Some(value) = header.strip_prefix("Content-Length:") {
+                        length = value.trim().parse().unwrap_or(0);
+                    }
+                }
+                let mut body = vec![0; length];
+                if reader.read_exact(&mut body).is_err() {
+                    return;
+                }
+                let at = Instant::now();
+                let message = serde_json::from_slice(&body).unwrap_or(Value::Null);
+                if sender
+                    .send(Arrival {
+                        at,
+                        bytes: length,
+                        message,
+                    })
+                    .is_err()
+                {
+                    return;
+                }
+            }
+        });
+        Server {
+            child,
+            stdin,
+            arrivals,
+            next_id: 1,
+        }
+    }
+
+    /// Sends an encoded message; returns the moment it started to go out.
+    fn send(&mut self, encoded: &[u8]) -> Instant {
+        let started = Instant::now();
+        self.stdin.write_all(encoded).unwrap();
+        self.stdin.flush().unwrap();
+        started
+    }
+
+    fn notify(&mut self, method: &str, params: Value) -> Instant {
+        let encoded = frame(&json!({"jsonrpc": "2.0", "method": method, "params": params}));
+        self.send(&encoded)
+    }
+
+    fn request(&mut self, method: &str, params: Value) -> (Instant, i64) {
+        let id = self.next_id;
+        self.next_id += 1;
+        let encoded =
+            frame(&json!({"jsonrpc": "2.0", "id": id, "method": method, "params": params}));
+        (self.send(&encoded), id)
+    }
+
+    fn wait_for(&mut self, wanted: impl Fn(&Value) -> bool) -> Arrival {
+        loop {
+            let arrival = self
+                .arrivals
+                .recv_timeout(TIMEOUT)
+                .expect("the server answers");
+            if wanted(&arrival.message) {
+                return arrival;
+            }
+        }
+    }
+
+    fn diagnostics_of(&mut self, version: i64) -> Arrival {
+        self.wait_for(|message| {
+            message["method"] == "textDocument/publishDiagnostics"
+                && message["params"]["version"] == version
+        })
+    }
+
+    fn resident_kib(&self) -> Option<u64> {
+        let status = std::fs::read_to_string(format!("/proc/{}/status", self.child.id())).ok()?;
+        status
+            .lines()
+            .find_map(|line| line.strip_prefix("VmRSS:"))
+            .and_then(|value| value.trim().trim_end_matches("kB").trim().parse().ok())
+    }
+
+    fn stop(mut self) {
+        let (_, id) = self.request("shutdown", Value::Null);
+        self.wait_for(|message| message["id"] == id);
+        self.notify("exit", Value::Null);
+        let _ = self.child.wait();
+    }
+}
+
+fn log_path() -> std::path::PathBuf {
+    std::env::temp_dir().join(format!("sinumerik-lsp-latency-{}.log", std::process::id()))
+}
+
+/// From the server's log lines "analysis (A ms) and writing of N diagnostics took T ms": the median
+/// time the server spent turning its diagnostics into the notification (T - A), over the runs logged.
+fn writing_cost_from_log() {
+    let log = std::fs::read_to_string(log_path()).unwrap_or_default();
+    let mut samples: Vec<(u64, usize)> = log
+        .lines()
+        .filter_map(|line| {
+            let rest = line.split_once("analysis (")?.1;
+            let (analysis, rest) = rest.split_once(" ms) and writing of ")?;
+            let (count, rest) = rest.split_once(" diagnostics took ")?;
+            let total = rest.strip_suffix(" ms")?;
+            Some((
+                total
+                    .parse::<u64>()
+                    .ok()?
+                    .saturating_sub(analysis.parse().ok()?),
+                count.parse().ok()?,
+            ))
+        })
+        .collect();
+    if samples.is_empty() {
+        println!("  server-side writing of the diagnostics: not logged (analysis and writing under 100 ms)");
+        return;
+    }
+    samples.sort();
+    let (median, count) = samples[samples.len() / 2];
+    println!("  server-side conversion and writing of {count} diagnostics: median {median} ms ({} runs logged)", samples.len());
+}
+
+/// xorshift64*: repeatable random lines.
+struct Random(u64);
+
+impl Random {
+    fn below(&mut self, bound: usize) -> usize {
+        self.0 ^= self.0 >> 12;
+        self.0 ^= self.0 << 25;
+        self.0 ^= self.0 >> 27;
+        (self.0.wrapping_mul(0x2545_F491_4F6C_DD1D) % bound as u64) as usize
+    }
+}
+
+fn percentile(samples: &mut [Duration], fraction: f64) -> Duration {
+    samples.sort();
+    let index = ((samples.len() as f64 - 1.0) * fraction).round() as usize;
+    samples[index.min(samples.len() - 1)]
+}
+
+fn milliseconds(duration: Duration) -> String {
+    format!("{:.2} ms", duration.as_secs_f64() * 1e3)
+}
+
+fn summary(name: &str, samples: &mut [Duration]) {
+    if samples.is_empty() {
+        println!("  {name}: no samples");
+        return;
+    }
+    let median = percentile(samples, 0.5);
+    let p99 = percentile(samples, 0.99);
+    println!(
+        "  {name}: median {}, p99 {} ({} samples)",
+        milliseconds(median),
+        milliseconds(p99),
+        samples.len()
+    );
+}
+
+fn env_number(name: &str, default: usize) -> usize {
+    std::env::var(name)
+        .ok()
+        .and_then(|value| value.parse().ok())
+        .unwrap_or(default)
+}
+
+/// Where a one-character edit goes on line `line` of the program: a space at the start (cam3d), or
+/// the last digit of its first coordinate replaced (inc). `None` when the line has no coordinate.
+fn edit_for(style: &str, line: &str) -> Option<(usize, usize, String)> {
+    if style == "cam3d" {
+        return Some((0, 0, " ".to_string()));
+    }
+    let bytes = line.as_bytes();
+    let axis = bytes
+        .iter()
+        .position(|&byte| byte == b'X' || byte == b'Y' || byte == b'Z')?;
+    let mut end = axis + 1;
+    while end < bytes.len()
+        && (bytes[end].is_ascii_digit() || bytes[end] == b'.' || bytes[end] == b'-')
+    {
+        end += 1;
+    }
+    let digit = (axis + 1..end)
+        .rev()
+        .find(|&index| bytes[index].is_ascii_digit())?;
+    let replacement = if bytes[digit] == b'9' {
+        '8'
+    } else {
+        (bytes[digit] + 1) as char
+    };
+    Some((digit, digit + 1, replacement.to_string()))
+}
+
+fn run(style: &str, line_count: usize) {
+    let Some(text) = generated::generate(style, line_count) else {
+        println!("{style}: skipped (../shared/bench/gen_program.py or python3 not available)");
+        return;
+    };
+    let mut lines: Vec<String> = text.lines().map(str::to_string).collect();
+    let megabytes = text.len() as f64 / 1e6;
+    println!("{style}: {} lines, {megabytes:.1} MB", lines.len());
+    let budget = Duration::from_secs(env_number("BENCH_BUDGET_SECS", 240) as u64);
+    let mut server = Server::start();
+    let (_, id) = server.request(
+        "initialize",
+        json!({"processId": null, "rootUri": null, "capabilities": {"general": {"positionEncodings": ["utf-16"]}}}),
+    );
+    server.wait_for(|message| message["id"] == id);
+    server.notify("initialized", json!({}));
+
+    let uri = format!("file:///bench/{style}.mpf");
+    let open = frame(
+        &json!({"jsonrpc": "2.0", "method": "textDocument/didOpen", "params": {"textDocument": {"uri": uri, "languageId": "sinumerik", "version": 1, "text": text}}}),
+    );
+    drop(text);
+    json_costs(&open);
+    let started = server.send(&open);
+    drop(open);
+    let first = server.diagnostics_of(1);
+    let diagnostic_count = first.message["params"]["diagnostics"]
+        .as_array()
+        .map_or(0, Vec::len);
+    println!(
+        "  didOpen to first publishDiagnostics: {} ({diagnostic_count} diagnostics, a {:.1} MB message)",
+        milliseconds(first.at - started),
+        first.bytes as f64 / 1e6
+    );
+    // What that message costs the client to read is part of every edit's latency as well.
+    let parse_started = Instant::now();
+    let _: Value = serde_json::from_slice(&serde_json::to_vec(&first.message).unwrap()).unwrap();
+    println!(
+        "  reading that message back as JSON (client side, for scale): {}",
+        milliseconds(parse_started.elapsed())
+    );
+    if let Some(resident) = server.resident_kib() {
+        println!(
+            "  resident memory after open: {:.1} MB ({:.2}x the file)",
+            resident as f64 / 1024.0,
+            resident as f64 * 1024.0 / (megabytes * 1e6)
+        );
+    }
+
+    let mut random = Random(0x5EED ^ line_count as u64);
+    let mut version = 1;
+    let mut edits = Vec::new();
+    let edit_started = Instant::now();
+    while edits.len() < env_number("BENCH_EDITS", 200) && edit_started.elapsed() < budget {
+        let line_idx = random.below(lines.len());
+        let Some((start, end, new_text)) = edit_for(style, &lines[line_idx]) else {
+            continue;
+        };
+        version += 1;
+        let change = json!([{"range": {"start": {"line": line_idx, "character": start}, "end": {"line": line_idx, "character": end}}, "text": new_text}]);
+        let encoded = frame(
+            &json!({"jsonrpc": "2.0", "method": "textDocument/didChange", "params": {"textDocument": {"uri": uri, "version": version}, "contentChanges": change}}),
+        );
+        let sent = server.send(&encoded);
+        let arrival = server.diagnostics_of(version);
+        edits.push(arrival.at - sent);
+        lines[line_idx].replace_range(start..end, &new_text);
+    }
+    let kind = if style == "cam3d" {
+        "space at the start of a line"
+    } else {
+        "changed coordinate digit"
+    };
+    summary(&format!("edit ({kind}) to publishDiagnostics"), &mut edits);
+
+    let mut hovers = Vec::new();
+    let hover_started = Instant::now();
+    while hovers.len() < env_number("BENCH_HOVERS", 200) && hover_started.elapsed() < budget {
+        let line_idx = random.below(lines.len());
+        let Some(column) = lines[line_idx].find(['X', 'Y', 'Z']) else {
+            continue;
+        };
+        let (sent, id) = server.request("textDocument/hover", json!({"textDocument": {"uri": uri}, "position": {"line": line_idx, "character": column}}));
+        let arrival = server.wait_for(|message| message["id"] == id);
+        hovers.push(arrival.at - sent);
+    }
+    summary("hover on an axis word", &mut hovers);
+    if let Some(resident) = server.resident_kib() {
+        println!(
+            "  resident memory at the end: {:.1} MB ({:.2}x the file)",
+            resident as f64 / 1024.0,
+            resident as f64 * 1024.0 / (megabytes * 1e6)
+        );
+    }
+    server.stop();
+    writing_cost_from_log();
+}
+
+/// What reading the didOpen message costs a server, measured here with the same libraries: the
+/// framing guard's check, and the framework's parse into a JSON value and then into typed params.
+fn json_costs(framed: &[u8]) {
+    let body_start = framed
+        .windows(4)
+        .position(|window| window == b"\r\n\r\n")
+        .map_or(0, |index| index + 4);
+    let body = &framed[body_start..];
+    let started = Instant::now();
+    let valid = std::str::from_utf8(body).is_ok()
+        && serde_json::from_slice::<serde::de::IgnoredAny>(body).is_ok();
+    let checked = started.elapsed();
+    let started = Instant::now();
+    let value: Value = serde_json::from_str(std::str::from_utf8(body).unwrap()).unwrap();
+    let parsed = started.elapsed();
+    let started = Instant::now();
+    let params: tower_lsp_server::ls_types::DidOpenTextDocumentParams =
+        serde_json::from_value(value["params"].clone()).unwrap();
+    let typed = started.elapsed();
+    println!(
+        "  reading the didOpen message (measured here): check {} (valid: {valid}), to a JSON value {}, to typed params {} ({} bytes of text)",
+        milliseconds(checked),
+        milliseconds(parsed),
+        milliseconds(typed),
+        params.text_document.text.len()
+    );
+}
+
+/// What serializing a publishDiagnostics of `count` diagnostics costs the server by itself.
+fn serialization_cost(count: usize) {
+    use tower_lsp_server::ls_types::{
+        Diagnostic, DiagnosticSeverity, NumberOrString, Position, PublishDiagnosticsParams, Range,
+        Uri,
+    };
+    let diagnostics: Vec<Diagnostic> = (0..count)
+        .map(|index| Diagnostic {
+            range: Range::new(
+                Position::new(index as u32 * 40, 4),
+                Position::new(index as u32 * 40, 30),
+            ),
+            severity: Some(DiagnosticSeverity::ERROR),
+            code: Some(NumberOrString::String("A206".to_string())),
+            source: Some("sinumerik".to_string()),
+            message: "the end point is 0.412 mm off the circle (allowed 0.010 mm, alarm 14040)"
+                .to_string(),
+            ..Diagnostic::default()
+        })
+        .collect();
+    let params = PublishDiagnosticsParams {
+        uri: "file:///bench/cam3d.mpf".parse::<Uri>().unwrap(),
+        diagnostics,
+        version: Some(2),
+    };
+    // The framework turns the params into a JSON value first and that value into text.
+    let started = Instant::now();
+    let value = serde_json::to_value(&params).unwrap();
+    let to_value = started.elapsed();
+    let bytes = serde_json::to_vec(&value).unwrap();
+    let total = started.elapsed();
+    let started = Instant::now();
+    drop(value);
+    let dropped = started.elapsed();
+    let started = Instant::now();
+    let direct = serde_json::to_vec(&params).unwrap();
+    let direct_time = started.elapsed();
+    println!(
+        "serializing {count} diagnostics as the framework does: {} ({} to a JSON value, {} to text, {} to free the value) for {:.1} MB; straight to text it would take {}",
+        milliseconds(total + dropped),
+        milliseconds(to_value),
+        milliseconds(total - to_value),
+        milliseconds(dropped),
+        bytes.len() as f64 / 1e6,
+        milliseconds(direct_time),
+    );
+    assert_eq!(direct.len(), bytes.len());
+}
+
+fn main() {
+    let line_count = env_number("BENCH_LINES", 1_000_000);
+    println!("language server latency over stdio, {line_count}-line programs, release binary");
+    for style in ["cam3d", "inc"] {
+        run(style, line_count);
+    }
+    serialization_cost(24_000);
+}
