@@ -219,6 +219,43 @@ impl<'a> Engine<'a> {
     /// left to [`Engine::describe_last_move`], so that callers that need only diagnostics pay nothing
     /// for it.
     pub fn step(&mut self, line: &str, block: &Block, diagnostics: &mut Vec<Diagnostic>) -> bool {
+        let moved = self.step_block(line, block, diagnostics);
+        self.forget_non_finite();
+        moved
+    }
+
+    /// Values that overflowed (`X1EX308` twice under G91, a frame scaled beyond the range of a double)
+    /// are unknown, never infinity or NaN: a number shown must be one the control could reach.
+    fn forget_non_finite(&mut self) {
+        let finite = |value: &Option<f64>| value.filter(|value| value.is_finite());
+        for position in &mut self.state.positions {
+            *position = finite(position);
+        }
+        self.state.feed = finite(&self.state.feed);
+        self.state.polar_angle = finite(&self.state.polar_angle);
+        self.state.polar_radius = finite(&self.state.polar_radius);
+        for pole in &mut self.state.poles {
+            if let crate::analysis::state::Pole::At(first, second) = *pole {
+                if !(first.is_finite() && second.is_finite()) {
+                    *pole = crate::analysis::state::Pole::Unknown;
+                }
+            }
+        }
+        if let Some(frame) = self.state.frame {
+            let numbers = frame.matrix.iter().flatten().chain(&frame.translation);
+            if !numbers.into_iter().all(|value| value.is_finite()) {
+                self.state.frame = None;
+            }
+        }
+        if let Some(circle) = self.last_arc {
+            let numbers = [circle.centre.0, circle.centre.1, circle.radius, circle.sweep];
+            if !numbers.iter().all(|value| value.is_finite()) {
+                self.last_arc = None;
+            }
+        }
+    }
+
+    fn step_block(&mut self, line: &str, block: &Block, diagnostics: &mut Vec<Diagnostic>) -> bool {
         self.last_arc = None;
         if block.is_header {
             return false;
@@ -964,7 +1001,8 @@ impl<'a> Engine<'a> {
                     Some(slot) => frame.apply_axis(slot, point)?,
                     None => self.state.positions[index]?,
                 };
-                Some((name.clone(), value))
+                // The frame applied to a huge position may overflow: unknown, not infinity.
+                value.is_finite().then(|| (name.clone(), value))
             })
             .collect()
     }
@@ -1163,7 +1201,10 @@ impl<'a> Engine<'a> {
             if self.config.axes[index].kind != AxisKind::Transverse {
                 return Some(value);
             }
-            shows_diameter.map(|diameter| if diameter { value * 2.0 } else { value })
+            shows_diameter
+                .map(|diameter| if diameter { value * 2.0 } else { value })
+                // Doubling a radius near the largest double overflows: then it is unknown.
+                .filter(|shown| shown.is_finite())
         };
         let mut start = Vec::new();
         let mut end = Vec::new();
