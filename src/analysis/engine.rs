@@ -248,7 +248,12 @@ impl<'a> Engine<'a> {
             }
         }
         if let Some(circle) = self.last_arc {
-            let numbers = [circle.centre.0, circle.centre.1, circle.radius, circle.sweep];
+            let numbers = [
+                circle.centre.0,
+                circle.centre.1,
+                circle.radius,
+                circle.sweep,
+            ];
             if !numbers.iter().all(|value| value.is_finite()) {
                 self.last_arc = None;
             }
