@@ -89,7 +89,8 @@ struct Options {
     worker: bool,
 }
 
-const USAGE: &str = "usage: fuzz --target parser|analysis|document [--seconds N] [--steps N] [--seed S] \
+const USAGE: &str =
+    "usage: fuzz --target parser|analysis|document [--seconds N] [--steps N] [--seed S] \
 [--timeout-ms T] [--max-input-bytes B] [--memory-mb M] [--replay FILE...]";
 
 fn parse_options(args: &[String]) -> Result<Options, String> {
@@ -113,7 +114,8 @@ fn parse_options(args: &[String]) -> Result<Options, String> {
             args.get(index).ok_or(format!("{flag} needs a value"))
         };
         let number = |text: &String| -> Result<u64, String> {
-            text.parse().map_err(|_| format!("{flag}: `{text}` is not a number"))
+            text.parse()
+                .map_err(|_| format!("{flag}: `{text}` is not a number"))
         };
         match flag {
             "--target" => {
@@ -127,7 +129,9 @@ fn parse_options(args: &[String]) -> Result<Options, String> {
             "--max-input-bytes" => options.max_input_bytes = number(value()?)? as usize,
             "--memory-mb" => options.memory_mb = number(value()?)? as usize,
             "--replay" => {
-                options.replay.extend(args[index + 1..].iter().map(PathBuf::from));
+                options
+                    .replay
+                    .extend(args[index + 1..].iter().map(PathBuf::from));
                 index = args.len();
             }
             "--worker" => options.worker = true,
@@ -224,7 +228,10 @@ fn run_caught(target: Target, case: &Case) -> Result<usize, Failure> {
         Ok(Ok(steps)) => Ok(steps),
         Ok(Err(problem)) => Err(Failure::Property(problem)),
         Err(_) => Err(Failure::Panic(
-            LAST_PANIC.lock().map(|last| last.clone()).unwrap_or_default(),
+            LAST_PANIC
+                .lock()
+                .map(|last| last.clone())
+                .unwrap_or_default(),
         )),
     }
 }
@@ -257,7 +264,9 @@ fn work(options: &Options) -> u8 {
         options.memory_mb
     );
     let started = Instant::now();
-    let deadline = options.seconds.map(|seconds| started + Duration::from_secs(seconds));
+    let deadline = options
+        .seconds
+        .map(|seconds| started + Duration::from_secs(seconds));
     let mut last_report = started;
     let (mut executions, mut steps, mut bytes, mut peak) = (0u64, 0usize, 0usize, 0usize);
     let mut slowest = Duration::ZERO;
@@ -268,7 +277,13 @@ fn work(options: &Options) -> u8 {
             break;
         }
         let index = executions;
-        let case = generate_case(options.target, &seeds, options.seed, index, options.max_input_bytes);
+        let case = generate_case(
+            options.target,
+            &seeds,
+            options.seed,
+            index,
+            options.max_input_bytes,
+        );
         bytes += case.to_bytes().len();
         announce(index);
         let base = ALLOCATED.load(Ordering::Relaxed);
@@ -297,10 +312,28 @@ fn work(options: &Options) -> u8 {
         }
         if last_report.elapsed() >= Duration::from_secs(10) {
             last_report = Instant::now();
-            report(options, executions, steps, bytes, peak, slowest, started.elapsed(), false);
+            report(
+                options,
+                executions,
+                steps,
+                bytes,
+                peak,
+                slowest,
+                started.elapsed(),
+                false,
+            );
         }
     }
-    report(options, executions, steps, bytes, peak, slowest, started.elapsed(), true);
+    report(
+        options,
+        executions,
+        steps,
+        bytes,
+        peak,
+        slowest,
+        started.elapsed(),
+        true,
+    );
     0
 }
 
@@ -317,7 +350,10 @@ fn report(
 ) {
     let seconds = elapsed.as_secs_f64().max(1e-9);
     let steps_text = if options.target == Target::Document {
-        format!(", {steps} edit steps compared ({:.0}/s)", steps as f64 / seconds)
+        format!(
+            ", {steps} edit steps compared ({:.0}/s)",
+            steps as f64 / seconds
+        )
     } else {
         String::new()
     };
@@ -344,10 +380,11 @@ fn minimise_case(target: Target, case: &Case, failure: &Failure) -> Case {
         Case::Text(text) => Case::Text(minimise::minimise_text(text, &mut |candidate| {
             fails(&Case::Text(candidate.to_string()))
         })),
-        Case::Document(document) => Case::Document(minimise::minimise_document(
-            document,
-            &mut |candidate| fails(&Case::Document(candidate.clone())),
-        )),
+        Case::Document(document) => {
+            Case::Document(minimise::minimise_document(document, &mut |candidate| {
+                fails(&Case::Document(candidate.clone()))
+            }))
+        }
     }
 }
 
@@ -360,7 +397,11 @@ fn save_reproducer(target: Target, case: &Case) -> PathBuf {
     });
     let folder = Path::new(env!("CARGO_MANIFEST_DIR")).join("fixtures/fuzz");
     let _ = std::fs::create_dir_all(&folder);
-    let path = folder.join(format!("{}-{hash:016x}.{}", target.name(), case.extension()));
+    let path = folder.join(format!(
+        "{}-{hash:016x}.{}",
+        target.name(),
+        case.extension()
+    ));
     if let Err(problem) = std::fs::write(&path, &bytes) {
         eprintln!("fuzz: cannot write {}: {problem}", path.display());
     }
@@ -474,7 +515,13 @@ fn save_lost_case(options: &Options, index: Option<u64>) {
         return;
     };
     let (seeds, _) = seeds::load_seeds(Path::new(env!("CARGO_MANIFEST_DIR")));
-    let case = generate_case(options.target, &seeds, options.seed, index, options.max_input_bytes);
+    let case = generate_case(
+        options.target,
+        &seeds,
+        options.seed,
+        index,
+        options.max_input_bytes,
+    );
     let path = save_reproducer(options.target, &case);
     eprintln!(
         "fuzz: reproducer (case {index} of seed {}) written to {}\n      replay it with: cargo run --release --example fuzz -- --target {} --replay {}",

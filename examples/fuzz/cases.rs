@@ -89,7 +89,12 @@ pub fn generate_case(
 
 /// A program text: generated blocks, a window of a seed program changed by lines and characters, raw
 /// byte damage, or one long line of repeated pieces.
-fn generate_text(random: &mut Random, donor: &[String], max_lines: usize, max_bytes: usize) -> String {
+fn generate_text(
+    random: &mut Random,
+    donor: &[String],
+    max_lines: usize,
+    max_bytes: usize,
+) -> String {
     let lines = match random.below(5) {
         0 | 1 if !donor.is_empty() => {
             let start = random.below(donor.len());
@@ -141,16 +146,36 @@ pub fn edits_of_text(text: &str) -> DocumentCase {
     let first_line = lines.first().cloned().unwrap_or_default();
     let last = lines.len().saturating_sub(1);
     let edits = vec![
-        Edit { first: 0, removed: 1, inserted: Vec::new() },
-        Edit { first: 0, removed: 0, inserted: vec![first_line] },
-        Edit { first: middle, removed: 1, inserted: vec![String::new()] },
+        Edit {
+            first: 0,
+            removed: 1,
+            inserted: Vec::new(),
+        },
+        Edit {
+            first: 0,
+            removed: 0,
+            inserted: vec![first_line],
+        },
+        Edit {
+            first: middle,
+            removed: 1,
+            inserted: vec![String::new()],
+        },
         Edit {
             first: last,
             removed: 1,
             inserted: vec![format!("{} X1", lines.last().map_or("", String::as_str))],
         },
-        Edit { first: usize::MAX, removed: 0, inserted: vec!["G91 G1 X1 F100".to_string()] },
-        Edit { first: 0, removed: usize::MAX, inserted: Vec::new() },
+        Edit {
+            first: usize::MAX,
+            removed: 0,
+            inserted: vec!["G91 G1 X1 F100".to_string()],
+        },
+        Edit {
+            first: 0,
+            removed: usize::MAX,
+            inserted: Vec::new(),
+        },
     ];
     DocumentCase {
         turn: false,

@@ -89,7 +89,11 @@ impl DocumentCase {
             self.terminator
         );
         let joined = self.lines.join("\n");
-        out.push_str(&format!("lines {} {}\n{joined}\n", self.lines.len(), joined.len()));
+        out.push_str(&format!(
+            "lines {} {}\n{joined}\n",
+            self.lines.len(),
+            joined.len()
+        ));
         for edit in &self.edits {
             let joined = edit.inserted.join("\n");
             out.push_str(&format!(
@@ -134,7 +138,11 @@ impl DocumentCase {
             (lines.len() == count).then_some(lines)
         };
         let fields = header(&mut rest)?;
-        case.lines = take_lines(&mut rest, fields.get(1)?.parse().ok()?, fields.get(2)?.parse().ok()?)?;
+        case.lines = take_lines(
+            &mut rest,
+            fields.get(1)?.parse().ok()?,
+            fields.get(2)?.parse().ok()?,
+        )?;
         while !rest.is_empty() {
             let fields = header(&mut rest)?;
             let number = |index: usize| -> Option<usize> { fields.get(index)?.parse().ok() };
@@ -218,7 +226,9 @@ pub fn random_edit(random: &mut Random, lines: &[String], donor: &[String]) -> E
             let count = random.length(3, 600);
             donor[start..(start + count).min(donor.len())].to_vec()
         }
-        _ => (0..random.length(2, 40)).map(|_| generate::block(random)).collect(),
+        _ => (0..random.length(2, 40))
+            .map(|_| generate::block(random))
+            .collect(),
     };
     Edit {
         first,

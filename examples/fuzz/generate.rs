@@ -17,16 +17,52 @@ const NAMED_ADDRESSES: &[&str] = &[
 
 const G_FUNCTIONS: &[&str] = &[
     "G0", "G1", "G2", "G3", "G4", "G9", "G17", "G18", "G19", "G40", "G41", "G42", "G53", "G54",
-    "G500", "G55", "G64", "G70", "G71", "G90", "G91", "G94", "G95", "G110", "G111", "G112",
-    "G153", "G700", "G710", "G33", "G331", "G74", "G75", "G25", "G26", "G9999", "G01", "G1.5",
+    "G500", "G55", "G64", "G70", "G71", "G90", "G91", "G94", "G95", "G110", "G111", "G112", "G153",
+    "G700", "G710", "G33", "G331", "G74", "G75", "G25", "G26", "G9999", "G01", "G1.5",
 ];
 
 const INSTRUCTIONS: &[&str] = &[
-    "DIAMON", "DIAMOF", "DIAM90", "TRANS", "ATRANS", "ROT", "AROT", "SCALE", "ASCALE", "MIRROR",
-    "AMIRROR", "TRAORI", "TRACYL(20)", "TRAFOOF", "CIP", "CT", "SUPA", "CFC", "SOFT", "BRISK",
-    "M6", "M30", "M17", "RET", "STOPRE", "CYCLE800()", "CYCLE81(10,0,2,-5)", "L100", "L9999P3",
-    "MCALL", "MCALL CYCLE83(1,2)", "CALL \"SUB\"", "PCALL SUB1", "EXTCALL \"PART\"", "SAVE",
-    "REPEAT START END P=2", "RPL=30", "MSG()", "WAITM(1,1,2)", "GETD(X)", "SETMS(1)",
+    "DIAMON",
+    "DIAMOF",
+    "DIAM90",
+    "TRANS",
+    "ATRANS",
+    "ROT",
+    "AROT",
+    "SCALE",
+    "ASCALE",
+    "MIRROR",
+    "AMIRROR",
+    "TRAORI",
+    "TRACYL(20)",
+    "TRAFOOF",
+    "CIP",
+    "CT",
+    "SUPA",
+    "CFC",
+    "SOFT",
+    "BRISK",
+    "M6",
+    "M30",
+    "M17",
+    "RET",
+    "STOPRE",
+    "CYCLE800()",
+    "CYCLE81(10,0,2,-5)",
+    "L100",
+    "L9999P3",
+    "MCALL",
+    "MCALL CYCLE83(1,2)",
+    "CALL \"SUB\"",
+    "PCALL SUB1",
+    "EXTCALL \"PART\"",
+    "SAVE",
+    "REPEAT START END P=2",
+    "RPL=30",
+    "MSG()",
+    "WAITM(1,1,2)",
+    "GETD(X)",
+    "SETMS(1)",
 ];
 
 const KEYWORD_LINES: &[&str] = &[
@@ -106,19 +142,104 @@ const MODIFIERS: &[&str] = &[
 /// Characters that are not NC text but occur in files: non-ASCII letters, symbols, a replacement
 /// character, control bytes, a byte order mark, right-to-left marks, astral characters.
 const ODD_CHARACTERS: &[&str] = &[
-    "Ä", "ö", "ß", "€", "µ", "°", "日本", "\u{FFFD}", "\u{FEFF}", "\u{200F}", "\u{1F600}", "\u{0}",
-    "\u{1}", "\u{7}", "\u{8}", "\t", "\u{b}", "\u{c}", "\u{1b}", "\u{7f}", "\u{85}", "\u{a0}",
-    "\u{2028}", "\r", "\n", "\r\n",
+    "Ä",
+    "ö",
+    "ß",
+    "€",
+    "µ",
+    "°",
+    "日本",
+    "\u{FFFD}",
+    "\u{FEFF}",
+    "\u{200F}",
+    "\u{1F600}",
+    "\u{0}",
+    "\u{1}",
+    "\u{7}",
+    "\u{8}",
+    "\t",
+    "\u{b}",
+    "\u{c}",
+    "\u{1b}",
+    "\u{7f}",
+    "\u{85}",
+    "\u{a0}",
+    "\u{2028}",
+    "\r",
+    "\n",
+    "\r\n",
 ];
 
 /// Short pieces of text a mutation inserts: tokens that change how the rest of a line reads.
 const FRAGMENTS: &[&str] = &[
-    "=", "(", ")", "[", "]", "\"", "'", ";", ":", ",", ".", "..", "$", "_", "'H", "'B", "'H1F'",
-    "'B101'", "EX", "EX-", "EX+400", "EX999999", "=AC(", "=IC(", "=DAC(", "AC", "IC(", "GOTOF ",
-    "IF ", "ENDIF", "N", "G", "R1", "R", "X", "-", "+", "*", "/", " ", "  ", "0", "9", "1.5",
-    "1e5", "99999999999999999999", "0.000000000000000001", "4294967296", "18446744073709551616",
-    "DEFINE ", " AS ", "PROC ", "DEF ", "REAL ", "SIN(", "<<", "\\", "@", "#", "%", "&", "|", "!",
-    "?", "{", "}", "~", "^",
+    "=",
+    "(",
+    ")",
+    "[",
+    "]",
+    "\"",
+    "'",
+    ";",
+    ":",
+    ",",
+    ".",
+    "..",
+    "$",
+    "_",
+    "'H",
+    "'B",
+    "'H1F'",
+    "'B101'",
+    "EX",
+    "EX-",
+    "EX+400",
+    "EX999999",
+    "=AC(",
+    "=IC(",
+    "=DAC(",
+    "AC",
+    "IC(",
+    "GOTOF ",
+    "IF ",
+    "ENDIF",
+    "N",
+    "G",
+    "R1",
+    "R",
+    "X",
+    "-",
+    "+",
+    "*",
+    "/",
+    " ",
+    "  ",
+    "0",
+    "9",
+    "1.5",
+    "1e5",
+    "99999999999999999999",
+    "0.000000000000000001",
+    "4294967296",
+    "18446744073709551616",
+    "DEFINE ",
+    " AS ",
+    "PROC ",
+    "DEF ",
+    "REAL ",
+    "SIN(",
+    "<<",
+    "\\",
+    "@",
+    "#",
+    "%",
+    "&",
+    "|",
+    "!",
+    "?",
+    "{",
+    "}",
+    "~",
+    "^",
 ];
 
 /// One random block.
@@ -227,7 +348,15 @@ pub fn number(random: &mut Random, signed: bool) -> String {
             out.push_str(&digits(random, *count));
         }
         _ => out.push_str(random.word(&[
-            "0", "00", "0.", ".0", "1.2.3", "1..", "4294967295", "4294967296", "9007199254740993",
+            "0",
+            "00",
+            "0.",
+            ".0",
+            "1.2.3",
+            "1..",
+            "4294967295",
+            "4294967296",
+            "9007199254740993",
         ])),
     }
     out
@@ -240,7 +369,15 @@ pub fn expression(random: &mut Random, depth: usize) -> String {
             0..=2 => number(random, false),
             3 => format!("R{}", random.below(200)),
             4 => random
-                .pick(&["DEPTH", "$PI", "$AA_IW[X]", "TRUE", "FALSE", "UNKNOWN", "_M1"])
+                .pick(&[
+                    "DEPTH",
+                    "$PI",
+                    "$AA_IW[X]",
+                    "TRUE",
+                    "FALSE",
+                    "UNKNOWN",
+                    "_M1",
+                ])
                 .to_string(),
             _ => format!("R[{}]", expression(random, depth + 1)),
         };
@@ -258,7 +395,11 @@ pub fn expression(random: &mut Random, depth: usize) -> String {
             // Unbalanced or very deep brackets: the depth limit and the error recovery.
             let count = random.pick(&[1, 2, 50, 200]);
             let open = random.word(&["(", "[", "SIN("]).repeat(*count);
-            let close = if random.one_in(2) { ")".repeat(*count) } else { String::new() };
+            let close = if random.one_in(2) {
+                ")".repeat(*count)
+            } else {
+                String::new()
+            };
             format!("{open}1{close}")
         }
         _ => format!(
@@ -431,7 +572,10 @@ pub fn mutate_bytes(random: &mut Random, text: &str) -> String {
                 bytes.remove(at);
             }
             2 => bytes.insert(at, random.next() as u8),
-            _ => bytes.insert(at, *random.pick(&[0u8, 0x80, 0xC3, 0xE2, 0xF0, 0xFF, b'\r'])),
+            _ => bytes.insert(
+                at,
+                *random.pick(&[0u8, 0x80, 0xC3, 0xE2, 0xF0, 0xFF, b'\r']),
+            ),
         }
     }
     sinumerik_lsp::cli::source_file::decode_source(&bytes).text

@@ -65,15 +65,28 @@ pub fn minimise_text(text: &str, fails: &mut dyn FnMut(&str) -> bool) -> String 
     loop {
         let smaller = shrink_text_once(&best, &mut budget, fails);
         if smaller.len() >= best.len() || budget.attempts > MAX_ATTEMPTS {
-            return if smaller.len() < best.len() { smaller } else { best };
+            return if smaller.len() < best.len() {
+                smaller
+            } else {
+                best
+            };
         }
         best = smaller;
     }
 }
 
-fn shrink_text_once(text: &str, budget: &mut Budget, fails: &mut dyn FnMut(&str) -> bool) -> String {
-    let mut lines: Vec<String> = text.split_inclusive(['\n', '\r']).map(str::to_string).collect();
-    shrink_list(&mut lines, budget, &mut |candidate| fails(&candidate.concat()));
+fn shrink_text_once(
+    text: &str,
+    budget: &mut Budget,
+    fails: &mut dyn FnMut(&str) -> bool,
+) -> String {
+    let mut lines: Vec<String> = text
+        .split_inclusive(['\n', '\r'])
+        .map(str::to_string)
+        .collect();
+    shrink_list(&mut lines, budget, &mut |candidate| {
+        fails(&candidate.concat())
+    });
     let mut characters: Vec<char> = lines.concat().chars().collect();
     shrink_list(&mut characters, budget, &mut |candidate| {
         fails(&candidate.iter().collect::<String>())
@@ -93,7 +106,11 @@ pub fn minimise_document(
         let smaller = shrink_document_once(&best, &mut budget, fails);
         let size = |case: &DocumentCase| case.to_bytes().len();
         if size(&smaller) >= size(&best) || budget.attempts > MAX_ATTEMPTS {
-            return if size(&smaller) < size(&best) { smaller } else { best };
+            return if size(&smaller) < size(&best) {
+                smaller
+            } else {
+                best
+            };
         }
         best = smaller;
     }

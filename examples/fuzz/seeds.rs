@@ -7,7 +7,6 @@ use std::path::{Path, PathBuf};
 
 /// One seed program, split into lines (without terminators).
 pub struct Seed {
-    pub name: String,
     pub lines: Vec<String>,
 }
 
@@ -64,10 +63,7 @@ fn read_seed(path: &Path) -> Option<Seed> {
     bytes.truncate(MAX_SEED_BYTES);
     let text = sinumerik_lsp::cli::source_file::decode_source(&bytes).text;
     let lines = split_lines(&text);
-    (!lines.is_empty()).then(|| Seed {
-        name: path.display().to_string(),
-        lines,
-    })
+    (!lines.is_empty()).then_some(Seed { lines })
 }
 
 /// The lines of `text` as the checker splits them (LF, CRLF, lone CR).

@@ -49,7 +49,9 @@ pub fn check_parser(text: &str) -> Result<(), String> {
         check_messages(fast.1.iter()).map_err(at)?;
         parser.parse_without_fast_path(line, &context, &mut general.0, &mut general.1);
         if fast.0 != general.0 {
-            return Err(at("the fast path builds another block than the general parser".into()));
+            return Err(at(
+                "the fast path builds another block than the general parser".into(),
+            ));
         }
         if fast.1 != general.1 {
             return Err(at(format!(
@@ -207,7 +209,11 @@ pub fn first_difference(actual: &[LineDiagnostic], expected: &[LineDiagnostic]) 
         .unwrap_or(actual.len().min(expected.len()));
     format!(
         "at {index}: {:?} instead of {:?}",
-        actual.get(index).map(|item| (item.line, item.diagnostic.code, &item.diagnostic.message)),
-        expected.get(index).map(|item| (item.line, item.diagnostic.code, &item.diagnostic.message))
+        actual
+            .get(index)
+            .map(|item| (item.line, item.diagnostic.code, &item.diagnostic.message)),
+        expected
+            .get(index)
+            .map(|item| (item.line, item.diagnostic.code, &item.diagnostic.message))
     )
 }
