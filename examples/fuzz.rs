@@ -263,38 +263,39 @@ fn work(options: &Options) -> u8 {
         options.timeout,
         options.memory_mb
     );
-    let started = Instant::now();
+    let mut totals = Totals {
+        started: Instant::now(),
+        executions: 0,
+        steps: 0,
+        bytes: 0,
+        peak: 0,
+        slowest: Duration::ZERO,
+    };
     let deadline = options
         .seconds
-        .map(|seconds| started + Duration::from_secs(seconds));
-    let mut last_report = started;
-    let (mut executions, mut steps, mut bytes, mut peak) = (0u64, 0usize, 0usize, 0usize);
-    let mut slowest = Duration::ZERO;
+        .map(|seconds| totals.started + Duration::from_secs(seconds));
+    let mut last_report = totals.started;
     loop {
         if deadline.is_some_and(|deadline| Instant::now() >= deadline)
-            || options.steps.is_some_and(|wanted| steps >= wanted)
+            || options.steps.is_some_and(|wanted| totals.steps >= wanted)
         {
             break;
         }
-        let index = executions;
-        let case = generate_case(
-            options.target,
-            &seeds,
-            options.seed,
-            index,
-            options.max_input_bytes,
-        );
-        bytes += case.to_bytes().len();
+        let index = totals.executions;
+        let case = case_number(options, &seeds, index);
+        totals.bytes += case.to_bytes().len();
         announce(index);
         let base = ALLOCATED.load(Ordering::Relaxed);
         PEAK.store(base, Ordering::Relaxed);
         let case_started = Instant::now();
         let result = run_caught(options.target, &case);
-        slowest = slowest.max(case_started.elapsed());
-        peak = peak.max(PEAK.load(Ordering::Relaxed).saturating_sub(base));
-        executions += 1;
+        totals.slowest = totals.slowest.max(case_started.elapsed());
+        totals.peak = totals
+            .peak
+            .max(PEAK.load(Ordering::Relaxed).saturating_sub(base));
+        totals.executions += 1;
         match result {
-            Ok(case_steps) => steps += case_steps,
+            Ok(case_steps) => totals.steps += case_steps,
             Err(failure) => {
                 eprintln!("fuzz: case {index} failed: {}", failure.describe());
                 let minimal = minimise_case(options.target, &case, &failure);
@@ -312,61 +313,50 @@ fn work(options: &Options) -> u8 {
         }
         if last_report.elapsed() >= Duration::from_secs(10) {
             last_report = Instant::now();
-            report(
-                options,
-                executions,
-                steps,
-                bytes,
-                peak,
-                slowest,
-                started.elapsed(),
-                false,
-            );
+            totals.report(options, false);
         }
     }
-    report(
-        options,
-        executions,
-        steps,
-        bytes,
-        peak,
-        slowest,
-        started.elapsed(),
-        true,
-    );
+    totals.report(options, true);
     0
 }
 
-#[allow(clippy::too_many_arguments)]
-fn report(
-    options: &Options,
+/// What a run has done so far, for the progress lines and the final figures.
+struct Totals {
+    started: Instant,
     executions: u64,
+    /// Edit steps compared (document target).
     steps: usize,
+    /// Bytes of input generated.
     bytes: usize,
+    /// The most memory one case allocated beyond what was in use before it.
     peak: usize,
     slowest: Duration,
-    elapsed: Duration,
-    last: bool,
-) {
-    let seconds = elapsed.as_secs_f64().max(1e-9);
-    let steps_text = if options.target == Target::Document {
-        format!(
-            ", {steps} edit steps compared ({:.0}/s)",
-            steps as f64 / seconds
-        )
-    } else {
-        String::new()
-    };
-    eprintln!(
-        "fuzz {}{}: {executions} executions in {seconds:.1} s ({:.0}/s){steps_text}, {:.1} MB of input, slowest case {:.1} ms, peak memory per case {:.1} MB{}",
-        options.target.name(),
-        if last { " done" } else { "" },
-        executions as f64 / seconds,
-        bytes as f64 / 1e6,
-        slowest.as_secs_f64() * 1e3,
-        peak as f64 / 1e6,
-        if last { ", no failure" } else { "" },
-    );
+}
+
+impl Totals {
+    fn report(&self, options: &Options, last: bool) {
+        let seconds = self.started.elapsed().as_secs_f64().max(1e-9);
+        let steps_text = if options.target == Target::Document {
+            format!(
+                ", {} edit steps compared ({:.0}/s)",
+                self.steps,
+                self.steps as f64 / seconds
+            )
+        } else {
+            String::new()
+        };
+        eprintln!(
+            "fuzz {}{}: {} executions in {seconds:.1} s ({:.0}/s){steps_text}, {:.1} MB of input, slowest case {:.1} ms, peak memory per case {:.1} MB{}",
+            options.target.name(),
+            if last { " done" } else { "" },
+            self.executions,
+            self.executions as f64 / seconds,
+            self.bytes as f64 / 1e6,
+            self.slowest.as_secs_f64() * 1e3,
+            self.peak as f64 / 1e6,
+            if last { ", no failure" } else { "" },
+        );
+    }
 }
 
 fn minimise_case(target: Target, case: &Case, failure: &Failure) -> Case {
@@ -507,21 +497,26 @@ fn supervise(args: &[String], options: &Options) -> u8 {
     }
 }
 
-/// Makes the case the worker was running again from the seed and its number, and saves it (not
-/// minimised: a case that kills the process is replayed in a new process for each attempt).
+/// Case `index` of this run: the worker and the supervisor make the same case from the same number.
+fn case_number(options: &Options, seeds: &[seeds::Seed], index: u64) -> Case {
+    generate_case(
+        options.target,
+        seeds,
+        options.seed,
+        index,
+        options.max_input_bytes,
+    )
+}
+
+/// Makes the case the worker was running again from the seed and its number, and saves it. It is not
+/// minimised: each attempt with a case that kills the process would need a process of its own.
 fn save_lost_case(options: &Options, index: Option<u64>) {
     let Some(index) = index else {
         eprintln!("fuzz: the worker failed before its first case");
         return;
     };
     let (seeds, _) = seeds::load_seeds(Path::new(env!("CARGO_MANIFEST_DIR")));
-    let case = generate_case(
-        options.target,
-        &seeds,
-        options.seed,
-        index,
-        options.max_input_bytes,
-    );
+    let case = case_number(options, &seeds, index);
     let path = save_reproducer(options.target, &case);
     eprintln!(
         "fuzz: reproducer (case {index} of seed {}) written to {}\n      replay it with: cargo run --release --example fuzz -- --target {} --replay {}",

@@ -5,26 +5,10 @@
 //! same comparison for 100,000 steps (`--target document --steps 100000`, docs/reliability.md).
 
 #[allow(dead_code)]
-#[path = "../examples/fuzz/approx.rs"]
-mod approx;
-#[allow(dead_code)]
-#[path = "../examples/fuzz/document.rs"]
-mod document;
-#[allow(dead_code)]
-#[path = "../examples/fuzz/generate.rs"]
-mod generate;
-#[allow(dead_code)]
-#[path = "../examples/fuzz/random.rs"]
-mod random;
-#[allow(dead_code)]
-#[path = "../examples/fuzz/seeds.rs"]
-mod seeds;
-#[allow(dead_code)]
-#[path = "../examples/fuzz/spans.rs"]
-mod spans;
-#[allow(dead_code)]
-#[path = "../examples/fuzz/targets.rs"]
-mod targets;
+#[path = "support/fuzz.rs"]
+mod fuzz;
+
+use fuzz::{document, random, seeds};
 
 use document::{check_document, random_edit, DocumentCase};
 use random::Random;

@@ -3,29 +3,10 @@
 //! now, with the same checks the fuzzer applies (examples/fuzz/targets.rs and document.rs).
 
 #[allow(dead_code)]
-#[path = "../examples/fuzz/approx.rs"]
-mod approx;
-#[allow(dead_code)]
-#[path = "../examples/fuzz/cases.rs"]
-mod cases;
-#[allow(dead_code)]
-#[path = "../examples/fuzz/document.rs"]
-mod document;
-#[allow(dead_code)]
-#[path = "../examples/fuzz/generate.rs"]
-mod generate;
-#[allow(dead_code)]
-#[path = "../examples/fuzz/random.rs"]
-mod random;
-#[allow(dead_code)]
-#[path = "../examples/fuzz/seeds.rs"]
-mod seeds;
-#[allow(dead_code)]
-#[path = "../examples/fuzz/spans.rs"]
-mod spans;
-#[allow(dead_code)]
-#[path = "../examples/fuzz/targets.rs"]
-mod targets;
+#[path = "support/fuzz.rs"]
+mod fuzz;
+
+use fuzz::{cases, document, random, seeds, targets};
 
 use cases::{run_case, Case, Target};
 use std::path::Path;

@@ -10,11 +10,15 @@ use sinumerik_lsp::cli::source_file::{decode_source, decode_windows_1252, Source
 use sinumerik_lsp::config::MachineConfig;
 use sinumerik_lsp::diagnostics::{Code, Diagnostic, LineDiagnostic, Span};
 use sinumerik_lsp::syntax::ast::{
-    AddressKind, Expr, ExprKind, Extension, JumpTarget, Statement, StructureKeyword, ValueExpr,
+    AddressKind, Expr, ExprKind, JumpTarget, Statement, StructureKeyword, ValueExpr,
 };
 use sinumerik_lsp::syntax::parser::MAX_EXPRESSION_DEPTH;
 use sinumerik_lsp::syntax::{check_program, lines, Block, LineParser, SyntaxContext};
 use std::process::Command;
+
+/// The span checks the fuzzer applies, shared so that both check the same spans.
+#[path = "../examples/fuzz/spans.rs"]
+mod fuzz_spans;
 use std::time::{Duration, Instant};
 
 /// The size of the "5 MB" lines of the issue.
@@ -72,85 +76,16 @@ fn check(text: &str) -> Vec<LineDiagnostic> {
     diagnostics
 }
 
-fn assert_span_valid(line: &str, span: Span, what: &str) {
-    let (start, end) = (span.start(), span.end());
-    assert!(
-        start <= end && end <= line.len(),
-        "{what}: span {start}..{end} is not inside the line of {} bytes",
-        line.len()
-    );
-    assert!(
-        line.is_char_boundary(start) && line.is_char_boundary(end),
-        "{what}: span {start}..{end} does not lie on character boundaries of {:?}",
-        abbreviate(line)
-    );
-}
-
 fn assert_diagnostic_spans_valid(line: &str, diagnostics: &[Diagnostic]) {
-    for diagnostic in diagnostics {
-        let what = format!("diagnostic {}", diagnostic.code.as_str());
-        assert_span_valid(line, diagnostic.span, &what);
-        if let Some(fix) = &diagnostic.fix {
-            for edit in &fix.edits {
-                assert_span_valid(line, edit.span, &format!("fix of {what}"));
-            }
-        }
+    if let Err(problem) = fuzz_spans::check_diagnostic_spans(line, diagnostics) {
+        panic!("{problem} in {:?}", abbreviate(line));
     }
 }
 
 /// Every span a block holds: its markers, its statements with their parts, and its expression nodes.
 fn assert_block_spans_valid(line: &str, block: &Block) {
-    let mut spans: Vec<Span> = Vec::new();
-    spans.extend(block.skip.map(|(_, span)| span));
-    spans.extend(block.number.map(|number| number.span));
-    spans.extend(block.label);
-    spans.extend(block.comment);
-    for statement in &block.statements {
-        spans.push(statement.span());
-        match statement {
-            Statement::Address(word) => {
-                spans.push(word.name);
-                match &word.extension {
-                    Some(Extension::Number { span, .. }) | Some(Extension::Index { span, .. }) => {
-                        spans.push(*span)
-                    }
-                    None => {}
-                }
-                spans.extend(word.value.modifier.map(|(_, span)| span));
-                if let ValueExpr::Constant { span, .. } = word.value.expr {
-                    spans.push(span);
-                }
-            }
-            Statement::Assignment { target_span, .. } => spans.push(*target_span),
-            Statement::Jump { target, .. } => match target {
-                JumpTarget::Label(span) | JumpTarget::BlockNumber { span, .. } => spans.push(*span),
-                JumpTarget::Computed(_) | JumpTarget::None => {}
-            },
-            Statement::Call { name, .. }
-            | Statement::ExternDeclaration { name, .. }
-            | Statement::MacroDefinition { name, .. } => spans.extend(*name),
-            Statement::Definition { names, .. } => spans.extend(names),
-            Statement::ProcedureHeader {
-                name, parameters, ..
-            } => {
-                spans.extend(*name);
-                spans.extend(parameters);
-            }
-            Statement::Instruction { name, .. } => spans.push(*name),
-            _ => {}
-        }
-        if let Statement::MacroDefinition { body, .. } = statement {
-            spans.push(*body);
-        }
-    }
-    for Expr { kind, span } in &block.exprs {
-        spans.push(*span);
-        if let ExprKind::Call { name, .. } = kind {
-            spans.push(*name);
-        }
-    }
-    for span in spans {
-        assert_span_valid(line, span, "block");
+    if let Err(problem) = fuzz_spans::check_block_spans(line, block) {
+        panic!("{problem} in {:?}", abbreviate(line));
     }
 }
 

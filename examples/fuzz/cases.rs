@@ -1,11 +1,11 @@
 //! Fuzz cases: how each target's inputs are generated from an index (so that a case can be made again
 //! from the seed and its number), run, written to a reproducer file and read back.
 
-use crate::document::{self, DocumentCase, Edit};
-use crate::generate;
-use crate::random::Random;
-use crate::seeds::Seed;
-use crate::targets::{check_analysis, check_parser};
+use super::document::{self, DocumentCase, Edit};
+use super::generate;
+use super::random::Random;
+use super::seeds::Seed;
+use super::targets::{check_analysis, check_parser};
 use std::path::Path;
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -141,7 +141,7 @@ pub fn run_case(target: Target, case: &Case) -> Result<usize, String> {
 /// target: remove the first line and put it back, empty the middle line, change the last line, append
 /// a block, and remove everything.
 pub fn edits_of_text(text: &str) -> DocumentCase {
-    let lines = crate::seeds::split_lines(text);
+    let lines = super::seeds::split_lines(text);
     let middle = lines.len() / 2;
     let first_line = lines.first().cloned().unwrap_or_default();
     let last = lines.len().saturating_sub(1);

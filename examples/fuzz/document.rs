@@ -6,10 +6,10 @@
 //! `sinumerik-fuzz-document 1`, then `config`, `kind` and `terminator` lines, `lines COUNT BYTES` with
 //! the lines joined by LF, and one `edit FIRST REMOVED COUNT BYTES` header per edit with its lines.
 
-use crate::approx::approx_equal;
-use crate::generate;
-use crate::random::Random;
-use crate::targets::{check_move_numbers, first_difference};
+use super::approx::approx_equal;
+use super::generate;
+use super::random::Random;
+use super::targets::{check_move_numbers, first_difference};
 use sinumerik_lsp::analysis::document::{DocumentAnalysis, TextLines};
 use sinumerik_lsp::analysis::{diagnose_program, ProgramKind};
 use sinumerik_lsp::config::MachineConfig;
@@ -241,7 +241,7 @@ fn split_all(lines: &[String]) -> Vec<String> {
     let mut out = Vec::with_capacity(lines.len());
     for line in lines {
         if line.contains(['\n', '\r']) {
-            let pieces = crate::seeds::split_lines(line);
+            let pieces = super::seeds::split_lines(line);
             if pieces.is_empty() {
                 out.push(String::new());
             }

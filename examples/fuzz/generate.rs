@@ -3,7 +3,7 @@
 //! and mutations of whole programs by lines and by characters, with non-ASCII and control bytes and
 //! every kind of line end.
 
-use crate::random::Random;
+use super::random::Random;
 
 const ADDRESSES: &[&str] = &[
     "X", "Y", "Z", "A", "B", "C", "U", "V", "W", "I", "J", "K", "F", "S", "T", "D", "M", "H", "E",

@@ -2,7 +2,7 @@
 //! characters, and for document cases first whole edits. Bounded by a number of attempts and a time,
 //! so a slow failure still ends with the smallest input found so far.
 
-use crate::document::DocumentCase;
+use super::document::DocumentCase;
 use std::time::{Duration, Instant};
 
 /// Stops a minimisation after this many tries of candidates or this much time.
@@ -59,19 +59,29 @@ fn shrink_list<T: Clone>(
 
 /// The smallest text found that still fails: lines first (with their line ends), then characters.
 pub fn minimise_text(text: &str, fails: &mut dyn FnMut(&str) -> bool) -> String {
+    repeat_while_smaller(text.to_string(), &|text| text.len(), &mut |best, budget| {
+        shrink_text_once(best, budget, fails)
+    })
+}
+
+/// Runs `shrink_once` again while it makes the input smaller: each round may make an earlier step
+/// possible again (a line that mattered only together with another).
+fn repeat_while_smaller<T>(
+    start: T,
+    size: &dyn Fn(&T) -> usize,
+    shrink_once: &mut dyn FnMut(&T, &mut Budget) -> T,
+) -> T {
     let mut budget = Budget::new();
-    let mut best = text.to_string();
-    // Each round may make an earlier step possible again (a line that mattered only with another).
+    let mut best = start;
     loop {
-        let smaller = shrink_text_once(&best, &mut budget, fails);
-        if smaller.len() >= best.len() || budget.attempts > MAX_ATTEMPTS {
-            return if smaller.len() < best.len() {
-                smaller
-            } else {
-                best
-            };
+        let smaller = shrink_once(&best, &mut budget);
+        if size(&smaller) >= size(&best) {
+            return best;
         }
         best = smaller;
+        if budget.attempts > MAX_ATTEMPTS {
+            return best;
+        }
     }
 }
 
@@ -100,20 +110,11 @@ pub fn minimise_document(
     case: &DocumentCase,
     fails: &mut dyn FnMut(&DocumentCase) -> bool,
 ) -> DocumentCase {
-    let mut budget = Budget::new();
-    let mut best = case.clone();
-    loop {
-        let smaller = shrink_document_once(&best, &mut budget, fails);
-        let size = |case: &DocumentCase| case.to_bytes().len();
-        if size(&smaller) >= size(&best) || budget.attempts > MAX_ATTEMPTS {
-            return if size(&smaller) < size(&best) {
-                smaller
-            } else {
-                best
-            };
-        }
-        best = smaller;
-    }
+    repeat_while_smaller(
+        case.clone(),
+        &|case| case.to_bytes().len(),
+        &mut |best, budget| shrink_document_once(best, budget, fails),
+    )
 }
 
 fn shrink_document_once(

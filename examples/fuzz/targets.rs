@@ -1,8 +1,8 @@
 //! The properties the parser and the full analysis must keep on any text. Each check returns `Err`
 //! with a description when a property fails; a panic is caught by the caller.
 
-use crate::approx::approx_equal;
-use crate::spans::{check_block_spans, check_diagnostic_spans, check_span};
+use super::approx::approx_equal;
+use super::spans::{check_block_spans, check_diagnostic_spans, check_span};
 use sinumerik_lsp::analysis::document::{DocumentAnalysis, TextLines};
 use sinumerik_lsp::analysis::{analyze_program, diagnose_program, visit_moves, Move, ProgramKind};
 use sinumerik_lsp::config::MachineConfig;
