@@ -87,11 +87,19 @@ struct Options {
     memory_mb: usize,
     replay: Vec<PathBuf>,
     worker: bool,
+    /// Where reproducers are written.
+    out: PathBuf,
+    /// Makes case 3 fail on purpose (panic, abort, hang, memory, overflow), to see the failure
+    /// handling work.
+    self_test: Option<String>,
+    /// Where the slowest case of the run is written at its end, for profiling.
+    save_slowest: Option<PathBuf>,
 }
 
 const USAGE: &str =
     "usage: fuzz --target parser|analysis|document [--seconds N] [--steps N] [--seed S] \
-[--timeout-ms T] [--max-input-bytes B] [--memory-mb M] [--replay FILE...]";
+[--timeout-ms T] [--max-input-bytes B] [--memory-mb M] [--out DIR] [--save-slowest FILE] [--self-test panic|abort|hang|memory|overflow] \
+[--replay FILE...]";
 
 fn parse_options(args: &[String]) -> Result<Options, String> {
     let mut options = Options {
@@ -104,6 +112,9 @@ fn parse_options(args: &[String]) -> Result<Options, String> {
         memory_mb: 1024,
         replay: Vec::new(),
         worker: false,
+        out: Path::new(env!("CARGO_MANIFEST_DIR")).join("fixtures/fuzz"),
+        self_test: None,
+        save_slowest: None,
     };
     let mut target = None;
     let mut index = 0;
@@ -135,6 +146,9 @@ fn parse_options(args: &[String]) -> Result<Options, String> {
                 index = args.len();
             }
             "--worker" => options.worker = true,
+            "--out" => options.out = PathBuf::from(value()?),
+            "--self-test" => options.self_test = Some(value()?.clone()),
+            "--save-slowest" => options.save_slowest = Some(PathBuf::from(value()?)),
             _ => return Err(format!("unknown argument `{flag}`")),
         }
         index += 1;
@@ -224,7 +238,11 @@ impl Failure {
 }
 
 fn run_caught(target: Target, case: &Case) -> Result<usize, Failure> {
-    match catch_unwind(AssertUnwindSafe(|| run_case(target, case))) {
+    run_caught_with(|| run_case(target, case))
+}
+
+fn run_caught_with(work: impl FnOnce() -> Result<usize, String>) -> Result<usize, Failure> {
+    match catch_unwind(AssertUnwindSafe(work)) {
         Ok(Ok(steps)) => Ok(steps),
         Ok(Err(problem)) => Err(Failure::Property(problem)),
         Err(_) => Err(Failure::Panic(
@@ -275,6 +293,7 @@ fn work(options: &Options) -> u8 {
         .seconds
         .map(|seconds| totals.started + Duration::from_secs(seconds));
     let mut last_report = totals.started;
+    let mut slowest_case = None;
     loop {
         if deadline.is_some_and(|deadline| Instant::now() >= deadline)
             || options.steps.is_some_and(|wanted| totals.steps >= wanted)
@@ -288,8 +307,17 @@ fn work(options: &Options) -> u8 {
         let base = ALLOCATED.load(Ordering::Relaxed);
         PEAK.store(base, Ordering::Relaxed);
         let case_started = Instant::now();
-        let result = run_caught(options.target, &case);
-        totals.slowest = totals.slowest.max(case_started.elapsed());
+        let result = match &options.self_test {
+            Some(kind) if index == 3 => induce_failure(kind),
+            _ => run_caught(options.target, &case),
+        };
+        let elapsed = case_started.elapsed();
+        if elapsed > totals.slowest {
+            totals.slowest = elapsed;
+            if options.save_slowest.is_some() {
+                slowest_case = Some(case.clone());
+            }
+        }
         totals.peak = totals
             .peak
             .max(PEAK.load(Ordering::Relaxed).saturating_sub(base));
@@ -299,7 +327,7 @@ fn work(options: &Options) -> u8 {
             Err(failure) => {
                 eprintln!("fuzz: case {index} failed: {}", failure.describe());
                 let minimal = minimise_case(options.target, &case, &failure);
-                let path = save_reproducer(options.target, &minimal);
+                let path = save_reproducer(options, &minimal);
                 eprintln!(
                     "fuzz: minimised reproducer written to {}\n      ({})",
                     path.display(),
@@ -317,6 +345,12 @@ fn work(options: &Options) -> u8 {
         }
     }
     totals.report(options, true);
+    if let (Some(path), Some(case)) = (&options.save_slowest, slowest_case) {
+        match std::fs::write(path, case.to_bytes()) {
+            Ok(()) => eprintln!("fuzz: the slowest case is in {}", path.display()),
+            Err(problem) => eprintln!("fuzz: cannot write {}: {problem}", path.display()),
+        }
+    }
     0
 }
 
@@ -378,15 +412,46 @@ fn minimise_case(target: Target, case: &Case, failure: &Failure) -> Case {
     }
 }
 
-/// Writes `case` to `fixtures/fuzz/TARGET-HASH.EXT` and returns the path.
-fn save_reproducer(target: Target, case: &Case) -> PathBuf {
+/// Fails on purpose the way `kind` says, to show that each kind of failure is caught and saved.
+fn induce_failure(kind: &str) -> Result<usize, Failure> {
+    fn recurse(depth: u64) -> u64 {
+        // The stop condition is never met (the depth never reaches it): the stack overflows first.
+        // The addition after the call keeps the recursion from becoming a loop.
+        if std::hint::black_box(depth) == u64::MAX {
+            return depth;
+        }
+        let buffer = std::hint::black_box([depth; 64]);
+        recurse(depth + 1) + buffer[7]
+    }
+    match kind {
+        "panic" => run_caught_with(|| panic!("a panic on purpose")),
+        "abort" => std::process::abort(),
+        "hang" => loop {
+            std::thread::sleep(Duration::from_secs(1));
+        },
+        "memory" => {
+            let mut blocks = Vec::new();
+            loop {
+                blocks.push(vec![1u8; 64 << 20]);
+                std::hint::black_box(&blocks);
+            }
+        }
+        "overflow" => Ok(recurse(0) as usize),
+        _ => Err(Failure::Property(format!("unknown self test `{kind}`"))),
+    }
+}
+
+/// Writes `case` to `OUT/TARGET-HASH.EXT` (`fixtures/fuzz/` unless `--out` says otherwise) and
+/// returns the path.
+fn save_reproducer(options: &Options, case: &Case) -> PathBuf {
+    let target = options.target;
     let bytes = case.to_bytes();
     // FNV-1a: a stable name for the same input.
     let hash = bytes.iter().fold(0xCBF2_9CE4_8422_2325u64, |hash, byte| {
         (hash ^ u64::from(*byte)).wrapping_mul(0x0100_0000_01B3)
     });
-    let folder = Path::new(env!("CARGO_MANIFEST_DIR")).join("fixtures/fuzz");
-    let _ = std::fs::create_dir_all(&folder);
+    let folder = &options.out;
+    let _ = std::fs::create_dir_all(folder);
     let path = folder.join(format!(
         "{}-{hash:016x}.{}",
         target.name(),
@@ -517,7 +582,7 @@ fn save_lost_case(options: &Options, index: Option<u64>) {
     };
     let (seeds, _) = seeds::load_seeds(Path::new(env!("CARGO_MANIFEST_DIR")));
     let case = case_number(options, &seeds, index);
-    let path = save_reproducer(options.target, &case);
+    let path = save_reproducer(options, &case);
     eprintln!(
         "fuzz: reproducer (case {index} of seed {}) written to {}\n      replay it with: cargo run --release --example fuzz -- --target {} --replay {}",
         options.seed,
