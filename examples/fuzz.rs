@@ -174,12 +174,24 @@ fn main() -> ExitCode {
         replay(&options)
     } else if options.worker {
         LIMIT.store(options.memory_mb << 20, Ordering::Relaxed);
-        work(&options)
+        // Cases run on a thread with the stack a language-server worker thread gets (2 MiB), not on
+        // the main thread's 8 MiB: recursion that fits only in the larger stack is a crash to find.
+        match std::thread::Builder::new()
+            .stack_size(WORKER_STACK_BYTES)
+            .spawn(move || work(&options))
+            .map(|worker| worker.join())
+        {
+            Ok(Ok(code)) => code,
+            _ => 2,
+        }
     } else {
         supervise(&args, &options)
     };
     ExitCode::from(code)
 }
+
+/// The stack of the thread that runs the cases.
+const WORKER_STACK_BYTES: usize = 2 << 20;
 
 // ----- panics ---------------------------------------------------------------------------------------
 
