@@ -94,11 +94,13 @@ struct Options {
     self_test: Option<String>,
     /// Where the slowest case of the run is written at its end, for profiling.
     save_slowest: Option<PathBuf>,
+    /// Where the case that needed the most memory is written at the end of the run.
+    save_hungriest: Option<PathBuf>,
 }
 
 const USAGE: &str =
     "usage: fuzz --target parser|analysis|document [--seconds N] [--steps N] [--seed S] \
-[--timeout-ms T] [--max-input-bytes B] [--memory-mb M] [--out DIR] [--save-slowest FILE] [--self-test panic|abort|hang|memory|overflow] \
+[--timeout-ms T] [--max-input-bytes B] [--memory-mb M] [--out DIR] [--save-slowest FILE] [--save-hungriest FILE] [--self-test panic|abort|hang|memory|overflow] \
 [--replay FILE...]";
 
 fn parse_options(args: &[String]) -> Result<Options, String> {
@@ -115,6 +117,7 @@ fn parse_options(args: &[String]) -> Result<Options, String> {
         out: Path::new(env!("CARGO_MANIFEST_DIR")).join("fixtures/fuzz"),
         self_test: None,
         save_slowest: None,
+        save_hungriest: None,
     };
     let mut target = None;
     let mut index = 0;
@@ -149,6 +152,7 @@ fn parse_options(args: &[String]) -> Result<Options, String> {
             "--out" => options.out = PathBuf::from(value()?),
             "--self-test" => options.self_test = Some(value()?.clone()),
             "--save-slowest" => options.save_slowest = Some(PathBuf::from(value()?)),
+            "--save-hungriest" => options.save_hungriest = Some(PathBuf::from(value()?)),
             _ => return Err(format!("unknown argument `{flag}`")),
         }
         index += 1;
@@ -306,6 +310,7 @@ fn work(options: &Options) -> u8 {
         .map(|seconds| totals.started + Duration::from_secs(seconds));
     let mut last_report = totals.started;
     let mut slowest_case = None;
+    let mut hungriest_case = None;
     loop {
         if deadline.is_some_and(|deadline| Instant::now() >= deadline)
             || options.steps.is_some_and(|wanted| totals.steps >= wanted)
@@ -330,9 +335,13 @@ fn work(options: &Options) -> u8 {
                 slowest_case = Some(case.clone());
             }
         }
-        totals.peak = totals
-            .peak
-            .max(PEAK.load(Ordering::Relaxed).saturating_sub(base));
+        let memory = PEAK.load(Ordering::Relaxed).saturating_sub(base);
+        if memory > totals.peak {
+            totals.peak = memory;
+            if options.save_hungriest.is_some() {
+                hungriest_case = Some(case.clone());
+            }
+        }
         totals.executions += 1;
         match result {
             Ok(case_steps) => totals.steps += case_steps,
@@ -357,10 +366,19 @@ fn work(options: &Options) -> u8 {
         }
     }
     totals.report(options, true);
-    if let (Some(path), Some(case)) = (&options.save_slowest, slowest_case) {
-        match std::fs::write(path, case.to_bytes()) {
-            Ok(()) => eprintln!("fuzz: the slowest case is in {}", path.display()),
-            Err(problem) => eprintln!("fuzz: cannot write {}: {problem}", path.display()),
+    for (path, case, what) in [
+        (&options.save_slowest, slowest_case, "slowest case"),
+        (
+            &options.save_hungriest,
+            hungriest_case,
+            "case that needed the most memory",
+        ),
+    ] {
+        if let (Some(path), Some(case)) = (path, case) {
+            match std::fs::write(path, case.to_bytes()) {
+                Ok(()) => eprintln!("fuzz: the {what} is in {}", path.display()),
+                Err(problem) => eprintln!("fuzz: cannot write {}: {problem}", path.display()),
+            }
         }
     }
     0
