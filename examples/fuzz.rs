@@ -285,15 +285,16 @@ const MINIMISING: u64 = u64::MAX;
 
 fn work(options: &Options) -> u8 {
     let crate_dir = Path::new(env!("CARGO_MANIFEST_DIR"));
-    let (seeds, corpus_count) = seeds::load_seeds(crate_dir);
+    let (seeds, corpus_count, generated_count) = seeds::load_seeds(crate_dir);
     eprintln!(
-        "fuzz {}: seed {}, {} seed programs ({} from fixtures, {} from the corpus{}), timeout {:?} and {} MiB per case",
+        "fuzz {}: seed {}, {} seed programs ({} from fixtures, {} from the corpus{}, {} generated), timeout {:?} and {} MiB per case",
         options.target.name(),
         options.seed,
         seeds.len(),
-        seeds.len() - corpus_count,
+        seeds.len() - corpus_count - generated_count,
         corpus_count,
         if corpus_count == 0 { ": not found" } else { "" },
+        generated_count,
         options.timeout,
         options.memory_mb
     );
@@ -610,7 +611,7 @@ fn save_lost_case(options: &Options, index: Option<u64>) {
         eprintln!("fuzz: the worker failed before its first case");
         return;
     };
-    let (seeds, _) = seeds::load_seeds(Path::new(env!("CARGO_MANIFEST_DIR")));
+    let (seeds, _, _) = seeds::load_seeds(Path::new(env!("CARGO_MANIFEST_DIR")));
     let case = case_number(options, &seeds, index);
     let path = save_reproducer(options, &case);
     eprintln!(

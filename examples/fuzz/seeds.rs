@@ -2,19 +2,25 @@
 //! are replayed on their own) and, when present, the real programs of `../shared/corpus/real`, read in
 //! place and never copied.
 
+#[path = "../../tests/support/generated.rs"]
+mod generated;
+
 use std::fs;
 use std::path::{Path, PathBuf};
 
 /// One seed program, split into lines (without terminators).
 pub struct Seed {
     pub lines: Vec<String>,
+    /// Made by the shared generator (long, regular programs) rather than read from a file.
+    pub generated: bool,
 }
 
 /// Files larger than this are read only up to it: a case should take milliseconds.
 const MAX_SEED_BYTES: usize = 512 * 1024;
 
-/// The seeds: fixtures first, then the corpus when it exists. Also says how many came from the corpus.
-pub fn load_seeds(crate_dir: &Path) -> (Vec<Seed>, usize) {
+/// The seeds: fixtures first, then the corpus when it exists, then programs of the shared generator
+/// when it exists. Also says how many came from the corpus and from the generator.
+pub fn load_seeds(crate_dir: &Path) -> (Vec<Seed>, usize, usize) {
     let mut seeds = Vec::new();
     for path in files_below(&crate_dir.join("fixtures")) {
         if path.components().any(|part| part.as_os_str() == "fuzz") {
@@ -27,7 +33,19 @@ pub fn load_seeds(crate_dir: &Path) -> (Vec<Seed>, usize) {
         seeds.extend(read_seed(&path));
     }
     let corpus_count = seeds.len() - fixture_count;
-    (seeds, corpus_count)
+    let before_generated = seeds.len();
+    // Long generated programs, incremental ones above all: they exercise the checkpoints and the
+    // shifts the document model carries across intervals of incremental blocks.
+    for style in ["inc", "mixed", "turning", "cam3d"] {
+        if let Some(text) = generated::generate(style, 6_000) {
+            seeds.push(Seed {
+                lines: split_lines(&text),
+                generated: true,
+            });
+        }
+    }
+    let generated_count = seeds.len() - before_generated;
+    (seeds, corpus_count, generated_count)
 }
 
 /// Where the real programs are, relative to the crate.
@@ -63,7 +81,10 @@ fn read_seed(path: &Path) -> Option<Seed> {
     bytes.truncate(MAX_SEED_BYTES);
     let text = sinumerik_lsp::cli::source_file::decode_source(&bytes).text;
     let lines = split_lines(&text);
-    (!lines.is_empty()).then_some(Seed { lines })
+    (!lines.is_empty()).then_some(Seed {
+        lines,
+        generated: false,
+    })
 }
 
 /// The lines of `text` as the checker splits them (LF, CRLF, lone CR).
