@@ -53,3 +53,11 @@ fn the_checks_find_an_infinite_position() {
     movement.end[0].1 = f64::INFINITY;
     assert!(targets::check_move_numbers(&movement).is_err());
 }
+
+#[test]
+fn the_checks_find_infinity_and_nan_in_a_block_report() {
+    assert!(document::check_finite_debug(&(Some(1.5), "information", vec![2.0])).is_ok());
+    assert!(document::check_finite_debug(&(Some(f64::INFINITY), "X")).is_err());
+    assert!(document::check_finite_debug(&[f64::NAN]).is_err());
+    assert!(document::check_finite_debug(&-f64::INFINITY).is_err());
+}

@@ -296,12 +296,11 @@ pub fn check_document(case: &DocumentCase) -> Result<usize, String> {
             (first * 7 + step * 131) % (line_count + 1),
         ];
         for line in probes {
-            approx_equal(
-                &analysis.block_report(&source, line),
-                &fresh.block_report(&source, line),
-                1e-6,
-            )
-            .map_err(|problem| at(format!("block report of line {}: {problem}", line + 1)))?;
+            let report = analysis.block_report(&source, line);
+            check_finite_debug(&report)
+                .map_err(|problem| at(format!("block report of line {}: {problem}", line + 1)))?;
+            approx_equal(&report, &fresh.block_report(&source, line), 1e-6)
+                .map_err(|problem| at(format!("block report of line {}: {problem}", line + 1)))?;
         }
         let range = first.saturating_sub(3)..(first + inserted + 600).min(line_count);
         let incremental = analysis.moves(&source, range.clone());
@@ -320,4 +319,26 @@ pub fn check_document(case: &DocumentCase) -> Result<usize, String> {
         }
     }
     Ok(case.edits.len())
+}
+
+/// A hover shows numbers only where they are known: no NaN or infinity anywhere in a block report
+/// (states before and after, the move, every word's resolution).
+pub fn check_finite_debug(value: &impl std::fmt::Debug) -> Result<(), String> {
+    let text = format!("{value:?}");
+    let bytes = text.as_bytes();
+    let is_word = |byte: u8| byte.is_ascii_alphanumeric() || byte == b'_';
+    for word in ["NaN", "inf"] {
+        for (at, _) in text.match_indices(word) {
+            let before = at.checked_sub(1).map(|index| bytes[index]);
+            let after = bytes.get(at + word.len()).copied();
+            if !before.is_some_and(is_word) && !after.is_some_and(is_word) {
+                let mut from = at.saturating_sub(80);
+                while !text.is_char_boundary(from) {
+                    from -= 1;
+                }
+                return Err(format!("shows {word}: …{}", &text[from..at + word.len()]));
+            }
+        }
+    }
+    Ok(())
 }

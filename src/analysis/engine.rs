@@ -1203,13 +1203,8 @@ impl<'a> Engine<'a> {
         let shows_diameter = self.state.shows_diameter();
         // How the program shows a value; unknown for a transverse axis while the diameter mode is.
         let display = |index: usize, value: f64| -> Option<f64> {
-            if self.config.axes[index].kind != AxisKind::Transverse {
-                return Some(value);
-            }
-            shows_diameter
-                .map(|diameter| if diameter { value * 2.0 } else { value })
-                // Doubling a radius near the largest double overflows: then it is unknown.
-                .filter(|shown| shown.is_finite())
+            let transverse = self.config.axes[index].kind == AxisKind::Transverse;
+            crate::analysis::state::shown_value(transverse, shows_diameter, value)
         };
         let mut start = Vec::new();
         let mut end = Vec::new();
