@@ -491,3 +491,23 @@ fn an_archive_opened_as_a_program() {
     assert!(human.contains("errors"));
     document_model("archive", &bytes);
 }
+
+#[test]
+fn coordinates_near_the_largest_double_give_a_valid_picture_and_table() {
+    // Each value is a finite double, but the picture's extent from -1.7e308 to 1.7e308 is not: the
+    // SVG once had `viewBox="-inf NaN inf inf"`. Such segments are left out and counted.
+    let program = "G0 X-1.7EX308 Y0\nG1 X1.7EX308 Y1 F100\nG1 X10 Y10\nG1 X20 Y5\n";
+    let file = TempFile::new("huge.mpf", program.as_bytes());
+    let svg = run(&["preview", "--format", "svg"], &file);
+    assert_eq!(svg.exit_code, Some(0), "{}", svg.stderr);
+    let svg = String::from_utf8(svg.stdout).unwrap();
+    assert!(!svg.contains("inf") && !svg.contains("NaN"), "{svg}");
+    assert!(
+        svg.contains("(1 segments, 2 left out: coordinates beyond 1e15)"),
+        "{svg}"
+    );
+    let csv = run(&["preview", "--format", "csv"], &file);
+    let csv = String::from_utf8(csv.stdout).unwrap();
+    assert!(!csv.contains("inf") && !csv.contains("NaN"), "{csv}");
+    assert_eq!(csv.lines().count(), 5, "{csv}");
+}
