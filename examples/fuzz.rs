@@ -1,8 +1,9 @@
-//! A coverage-free mutation fuzzer for the stable toolchain: the block parser, the full analysis and
-//! the document model under random edits, each checked against the properties the product promises.
+//! A coverage-free mutation fuzzer for the stable toolchain: the block parser, the full analysis, the
+//! document model under random edits and the command line's output formats, each checked against the
+//! properties the product promises.
 //!
 //! ```text
-//! cargo run --release --example fuzz -- --target parser|analysis|document [--seconds N] [--steps N]
+//! cargo run --release --example fuzz -- --target parser|analysis|document|cli [--seconds N] [--steps N]
 //!     [--seed S] [--timeout-ms T] [--max-input-bytes B] [--memory-mb M]
 //! cargo run --release --example fuzz -- --target document --replay FILE...
 //! ```
@@ -17,6 +18,8 @@
 mod approx;
 #[path = "fuzz/cases.rs"]
 mod cases;
+#[path = "fuzz/cli.rs"]
+mod cli;
 #[path = "fuzz/document.rs"]
 mod document;
 #[path = "fuzz/generate.rs"]
@@ -99,7 +102,7 @@ struct Options {
 }
 
 const USAGE: &str =
-    "usage: fuzz --target parser|analysis|document [--seconds N] [--steps N] [--seed S] \
+    "usage: fuzz --target parser|analysis|document|cli [--seconds N] [--steps N] [--seed S] \
 [--timeout-ms T] [--max-input-bytes B] [--memory-mb M] [--out DIR] [--save-slowest FILE] [--save-hungriest FILE] [--self-test panic|abort|hang|memory|overflow] \
 [--replay FILE...]";
 

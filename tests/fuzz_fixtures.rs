@@ -1,6 +1,7 @@
-//! Every reproducer the fuzzer found (fixtures/fuzz) runs through all three fuzz targets: the block
-//! parser, the full analysis and the document model under edits. Each one failed once; they must pass
-//! now, with the same checks the fuzzer applies (examples/fuzz/targets.rs and document.rs).
+//! Every reproducer of a fuzz finding (fixtures/fuzz) runs through all four fuzz targets: the block
+//! parser, the full analysis, the document model under edits and the command line's output formats.
+//! Each one failed once; they must pass now, with the same checks the fuzzer applies
+//! (examples/fuzz/targets.rs, document.rs and cli.rs).
 
 #[allow(dead_code)]
 #[path = "support/fuzz.rs"]
@@ -23,7 +24,12 @@ fn every_fuzz_reproducer_passes_every_target() {
     let mut failures = Vec::new();
     for path in &files {
         let case = Case::from_file(path).expect("a reproducer can be read");
-        for target in [Target::Parser, Target::Analysis, Target::Document] {
+        for target in [
+            Target::Parser,
+            Target::Analysis,
+            Target::Document,
+            Target::Cli,
+        ] {
             if let Err(problem) = run_case(target, &case) {
                 failures.push(format!("{} ({}): {problem}", path.display(), target.name()));
             }

@@ -1,6 +1,7 @@
 //! Fuzz cases: how each target's inputs are generated from an index (so that a case can be made again
 //! from the seed and its number), run, written to a reproducer file and read back.
 
+use super::cli::check_cli;
 use super::document::{self, DocumentCase, Edit};
 use super::generate;
 use super::random::Random;
@@ -13,6 +14,7 @@ pub enum Target {
     Parser,
     Analysis,
     Document,
+    Cli,
 }
 
 impl Target {
@@ -21,6 +23,7 @@ impl Target {
             "parser" => Some(Target::Parser),
             "analysis" => Some(Target::Analysis),
             "document" => Some(Target::Document),
+            "cli" => Some(Target::Cli),
             _ => None,
         }
     }
@@ -30,6 +33,7 @@ impl Target {
             Target::Parser => "parser",
             Target::Analysis => "analysis",
             Target::Document => "document",
+            Target::Cli => "cli",
         }
     }
 }
@@ -88,6 +92,7 @@ pub fn generate_case(
     match target {
         Target::Parser => Case::Text(generate_text(&mut random, donor, 60, max_bytes)),
         Target::Analysis => Case::Text(generate_text(&mut random, donor, 1_500, max_bytes)),
+        Target::Cli => Case::Text(generate_text(&mut random, donor, 300, max_bytes / 4)),
         Target::Document => Case::Document(document::generate_case(&mut random, donor, 40)),
     }
 }
@@ -129,6 +134,8 @@ pub fn run_case(target: Target, case: &Case) -> Result<usize, String> {
     match (target, case) {
         (Target::Parser, Case::Text(text)) => check_parser(text).map(|()| 0),
         (Target::Analysis, Case::Text(text)) => check_analysis(text).map(|()| 0),
+        (Target::Cli, Case::Text(text)) => check_cli(text).map(|()| 0),
+        (Target::Cli, Case::Document(case)) => check_cli(&case.final_text()).map(|()| 0),
         (Target::Document, Case::Document(case)) => document::check_document(case),
         (Target::Document, Case::Text(text)) => document::check_document(&edits_of_text(text)),
         (Target::Parser, Case::Document(case)) => {

@@ -5,6 +5,8 @@
 pub mod approx;
 #[path = "../../examples/fuzz/cases.rs"]
 pub mod cases;
+#[path = "../../examples/fuzz/cli.rs"]
+pub mod cli;
 #[path = "../../examples/fuzz/document.rs"]
 pub mod document;
 #[path = "../../examples/fuzz/generate.rs"]
