@@ -7,13 +7,27 @@ use sinumerik_lsp::cli::run_with_output;
 use std::ffi::OsString;
 use std::path::PathBuf;
 
-/// The files one worker uses: the program and a configuration for each machine.
+/// The files one thread uses: the program and a configuration for each machine.
 fn scratch_path(name: &str) -> PathBuf {
-    std::env::temp_dir().join(format!("sinumerik-fuzz-{}-{name}", std::process::id()))
+    let thread = format!("{:?}", std::thread::current().id());
+    let thread: String = thread.chars().filter(char::is_ascii_digit).collect();
+    std::env::temp_dir().join(format!(
+        "sinumerik-fuzz-{}-{thread}-{name}",
+        std::process::id()
+    ))
 }
 
-/// Runs the command line on `text` in every output format and checks what it prints.
+/// Runs the command line on `text` in every output format and checks what it prints. The scratch
+/// files are removed afterwards.
 pub fn check_cli(text: &str) -> Result<(), String> {
+    let result = run_every_format(text);
+    for name in ["program.mpf", "mill.toml", "turn.toml"] {
+        let _ = std::fs::remove_file(scratch_path(name));
+    }
+    result
+}
+
+fn run_every_format(text: &str) -> Result<(), String> {
     let program = scratch_path("program.mpf");
     std::fs::write(&program, text).map_err(|error| format!("cannot write the program: {error}"))?;
     for kind in ["mill", "turn"] {
