@@ -1,9 +1,9 @@
 //! A coverage-free mutation fuzzer for the stable toolchain: the block parser, the full analysis, the
-//! document model under random edits and the command line's output formats, each checked against the
-//! properties the product promises.
+//! document model under random edits, the command line's output formats and the configuration
+//! reader, each checked against the properties the product promises.
 //!
 //! ```text
-//! cargo run --release --example fuzz -- --target parser|analysis|document|cli [--seconds N] [--steps N]
+//! cargo run --release --example fuzz -- --target parser|analysis|document|cli|config [--seconds N] [--steps N]
 //!     [--seed S] [--timeout-ms T] [--max-input-bytes B] [--memory-mb M]
 //! cargo run --release --example fuzz -- --target document --replay FILE...
 //! ```
@@ -20,6 +20,8 @@ mod approx;
 mod cases;
 #[path = "fuzz/cli.rs"]
 mod cli;
+#[path = "fuzz/config.rs"]
+mod config;
 #[path = "fuzz/document.rs"]
 mod document;
 #[path = "fuzz/generate.rs"]
@@ -102,7 +104,7 @@ struct Options {
 }
 
 const USAGE: &str =
-    "usage: fuzz --target parser|analysis|document|cli [--seconds N] [--steps N] [--seed S] \
+    "usage: fuzz --target parser|analysis|document|cli|config [--seconds N] [--steps N] [--seed S] \
 [--timeout-ms T] [--max-input-bytes B] [--memory-mb M] [--out DIR] [--save-slowest FILE] [--save-hungriest FILE] [--self-test panic|abort|hang|memory|overflow] \
 [--replay FILE...]";
 

@@ -8,7 +8,7 @@ cd "$(dirname "$0")/.."
 seconds="${1:-60}"
 seed="${2:-$(date +%s)}"
 cargo build --release --example fuzz
-for target in parser analysis document cli; do
+for target in parser analysis document cli config; do
     echo "== fuzz --target $target --seconds $seconds --seed $seed"
     ./target/release/examples/fuzz --target "$target" --seconds "$seconds" --seed "$seed"
 done

@@ -1,7 +1,7 @@
-//! Every reproducer of a fuzz finding (fixtures/fuzz) runs through all four fuzz targets: the block
-//! parser, the full analysis, the document model under edits and the command line's output formats.
-//! Each one failed once; they must pass now, with the same checks the fuzzer applies
-//! (examples/fuzz/targets.rs, document.rs and cli.rs).
+//! Every reproducer of a fuzz finding (fixtures/fuzz) runs through all five fuzz targets: the block
+//! parser, the full analysis, the document model under edits, the command line's output formats and
+//! the configuration reader. Each one failed once; they must pass now, with the same checks the fuzzer
+//! applies (examples/fuzz/targets.rs, document.rs, cli.rs and config.rs).
 
 #[allow(dead_code)]
 #[path = "support/fuzz.rs"]
@@ -29,6 +29,7 @@ fn every_fuzz_reproducer_passes_every_target() {
             Target::Analysis,
             Target::Document,
             Target::Cli,
+            Target::Config,
         ] {
             if let Err(problem) = run_case(target, &case) {
                 failures.push(format!("{} ({}): {problem}", path.display(), target.name()));

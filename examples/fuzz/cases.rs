@@ -2,6 +2,7 @@
 //! from the seed and its number), run, written to a reproducer file and read back.
 
 use super::cli::check_cli;
+use super::config::check_config;
 use super::document::{self, DocumentCase, Edit};
 use super::generate;
 use super::random::Random;
@@ -15,6 +16,7 @@ pub enum Target {
     Analysis,
     Document,
     Cli,
+    Config,
 }
 
 impl Target {
@@ -24,6 +26,7 @@ impl Target {
             "analysis" => Some(Target::Analysis),
             "document" => Some(Target::Document),
             "cli" => Some(Target::Cli),
+            "config" => Some(Target::Config),
             _ => None,
         }
     }
@@ -34,6 +37,7 @@ impl Target {
             Target::Analysis => "analysis",
             Target::Document => "document",
             Target::Cli => "cli",
+            Target::Config => "config",
         }
     }
 }
@@ -93,6 +97,7 @@ pub fn generate_case(
         Target::Parser => Case::Text(generate_text(&mut random, donor, 60, max_bytes)),
         Target::Analysis => Case::Text(generate_text(&mut random, donor, 1_500, max_bytes)),
         Target::Cli => Case::Text(generate_text(&mut random, donor, 300, max_bytes / 4)),
+        Target::Config => Case::Text(super::config::generate_config(&mut random)),
         Target::Document => Case::Document(document::generate_case(&mut random, donor, 40)),
     }
 }
@@ -136,6 +141,9 @@ pub fn run_case(target: Target, case: &Case) -> Result<usize, String> {
         (Target::Analysis, Case::Text(text)) => check_analysis(text).map(|()| 0),
         (Target::Cli, Case::Text(text)) => check_cli(text).map(|()| 0),
         (Target::Cli, Case::Document(case)) => check_cli(&case.final_text()).map(|()| 0),
+        // Any text may be read as a configuration: a program is simply an invalid one.
+        (Target::Config, Case::Text(text)) => check_config(text).map(|()| 0),
+        (Target::Config, Case::Document(case)) => check_config(&case.final_text()).map(|()| 0),
         (Target::Document, Case::Document(case)) => document::check_document(case),
         (Target::Document, Case::Text(text)) => document::check_document(&edits_of_text(text)),
         (Target::Parser, Case::Document(case)) => {

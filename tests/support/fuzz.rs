@@ -7,6 +7,8 @@ pub mod approx;
 pub mod cases;
 #[path = "../../examples/fuzz/cli.rs"]
 pub mod cli;
+#[path = "../../examples/fuzz/config.rs"]
+pub mod config;
 #[path = "../../examples/fuzz/document.rs"]
 pub mod document;
 #[path = "../../examples/fuzz/generate.rs"]
