@@ -2,10 +2,11 @@
 //!
 //! Layers, from the bottom: `diagnostics` (shared vocabulary), `config` (machine data), `syntax`
 //! (lexer, parser, syntax diagnostics), `analysis` (modal state, resolved positions, semantic
-//! diagnostics), `cli` (the command line). See ARCHITECTURE.md.
+//! diagnostics), `cli` (the command line), `lsp` (the language server). See ARCHITECTURE.md.
 
 pub mod analysis;
 pub mod cli;
 pub mod config;
 pub mod diagnostics;
+pub mod lsp;
 pub mod syntax;

@@ -188,8 +188,8 @@ fn missing_path_exits_2_but_other_files_are_checked() {
 
 #[test]
 fn usage_errors_exit_2() {
+    // Without arguments the binary is the language server (tests/lsp_*.rs).
     for args in [
-        vec![],
         vec!["check"],
         vec!["check", "--format", "xml", "x.mpf"],
         vec!["check", "--no-such-option", "x.mpf"],

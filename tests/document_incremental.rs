@@ -70,6 +70,18 @@ const POOL: &[&str] = &[
     "F0",
     "R3=1/0",
     "X1 X2",
+    "G54",
+    "G500",
+    "G53 X0",
+    "SUPA Z0",
+    "G1 Z=IC(1)",
+    "X0.5 Y-0.25",
+    "G91 X0.125",
+    "CT X5 Y5",
+    "CIP X1 Y1 I1=0.5 J1=0.5",
+    "G2 X2 Y0 AR=90",
+    "A=DC(10)",
+    "$P_UIFR[1]=CTRANS(X,200)",
 ];
 
 /// Rare blocks that change how the whole document reads.

@@ -3,16 +3,19 @@
 //!
 //! What is followed today: G groups, G90/G91 with `=AC`/`=IC`, inch/metric (G70/G71/G700/G710),
 //! diameter programming (DIAMOF/DIAMON/DIAM90 and DAC/DIC/RAC/RIC), R parameters and DEF variables,
-//! feed, circles by centre or radius, polar coordinates, the programmable frame for machine
-//! coordinates. What is not followed yet turns values into "unknown" (settable work offsets, spatial
-//! rotations, AR/CIP/CT circles, calls of subprograms and cycles, transformations) or "uncertain"
-//! (everything after a jump or control structure, because the engine evaluates in program order).
+//! feed, circles (I/J/K, CR, AR, CIP, CT, TURN), polar coordinates, macros of the program, and for
+//! machine coordinates the programmable frame, the configured settable offsets with `$P_UIFR` writes
+//! and G53/G153/SUPA. What is not followed turns values into "unknown" (spatial rotations, basic and
+//! system frames, calls of subprograms and cycles, transformations) or "uncertain" (everything after a
+//! jump or control structure, because the engine evaluates in program order).
 
 pub mod circle;
 pub mod document;
 pub mod engine;
 pub mod eval;
 pub mod frame;
+pub mod machine;
+pub mod offsets;
 pub mod position_reads;
 pub mod resolution;
 pub mod state;
@@ -21,7 +24,6 @@ pub use engine::{Engine, Move};
 
 use crate::config::MachineConfig;
 use crate::diagnostics::LineDiagnostic;
-use crate::syntax::lines;
 
 /// Everything the analysis finds in a program.
 #[derive(Debug, Clone, PartialEq)]
@@ -105,7 +107,7 @@ fn new_engine<'a>(text: &str, config: &'a MachineConfig, kind: ProgramKind) -> E
 /// Whether a line of the program starts with `PROC`: such a program is a subprogram whatever its
 /// file is called.
 pub fn has_proc_header(text: &str) -> bool {
-    lines::line_ranges(text).any(|(start, end)| is_proc_header(&text[start..end]))
+    crate::syntax::lines_containing(text, b"PROC").any(is_proc_header)
 }
 
 /// Whether a line starts with `PROC`, the header of a subprogram.

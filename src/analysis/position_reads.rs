@@ -8,6 +8,7 @@
 //! G0/G1/G2/G3 moves with incremental words, feeds, spindles, tools, comments and variables counts
 //! as reading every axis absolutely.
 
+use crate::analysis::engine::PositionShift;
 use crate::analysis::state::ModalState;
 use crate::config::{AxisKind, MachineConfig};
 use crate::syntax::ast::{AddressKind, Block, Modifier, NamedAddress, Statement};
@@ -35,11 +36,8 @@ pub fn position_reads(config: &MachineConfig, line: &str, block: &Block, after: 
             }
             Statement::Address(word) => match word.kind {
                 AddressKind::Axis => {
-                    let name = crate::analysis::engine::axis_name(line, word);
-                    let Some(index) = config
-                        .axes
-                        .iter()
-                        .position(|axis| axis.name.eq_ignore_ascii_case(&name))
+                    let Some(index) =
+                        crate::analysis::engine::configured_axis_index(config, line, word)
                     else {
                         continue;
                     };
@@ -87,10 +85,21 @@ pub fn position_reads(config: &MachineConfig, line: &str, block: &Block, after: 
     mask
 }
 
-/// The axes (bit per index) a shift moves; `None` when it moves an axis that is never shifted.
-pub fn shifted_axes(config: &MachineConfig, shift: &[f64]) -> Option<u8> {
+/// The axes (bit per index) whose workpiece or programmed position a shift moves; `None` when it
+/// moves an axis that is never shifted. Machine positions follow from those through the frames.
+pub fn shifted_axes(config: &MachineConfig, shift: &PositionShift) -> Option<u8> {
     let mut mask = 0u8;
-    for (index, delta) in shift.iter().enumerate() {
+    let moved = shift.positions.iter().zip(&shift.programmed);
+    for (index, delta) in moved
+        .map(|(position, programmed)| {
+            if *position != 0.0 {
+                position
+            } else {
+                programmed
+            }
+        })
+        .enumerate()
+    {
         if *delta == 0.0 {
             continue;
         }

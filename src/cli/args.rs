@@ -75,14 +75,28 @@ pub(crate) fn parse_args(args: impl IntoIterator<Item = OsString>) -> Result<Com
     match first {
         Short('h') | Long("help") => Ok(Command::Help),
         Short('V') | Long("version") => Ok(Command::Version),
+        // Clients of vscode-languageclient pass `--stdio` when they talk over stdio.
+        Long("stdio") => parse_serve(&mut parser),
+        Value(command) if command == "serve" => parse_serve(&mut parser),
         Value(command) if command == "check" => parse_check(&mut parser),
         Value(command) if command == "preview" => parse_preview(&mut parser),
         Value(command) => Err(UsageError(format!(
-            "unknown command {:?} (the commands are `check` and `preview`)",
+            "unknown command {:?} (the commands are `serve`, `check` and `preview`)",
             command.to_string_lossy()
         ))),
         other => Err(other.unexpected().into()),
     }
+}
+
+fn parse_serve(parser: &mut lexopt::Parser) -> Result<Command, UsageError> {
+    while let Some(arg) = parser.next()? {
+        match arg {
+            Long("stdio") => {}
+            Short('h') | Long("help") => return Ok(Command::Help),
+            other => return Err(other.unexpected().into()),
+        }
+    }
+    Ok(Command::LanguageServer)
 }
 
 fn parse_check(parser: &mut lexopt::Parser) -> Result<Command, UsageError> {

@@ -23,7 +23,7 @@
 
 mod args;
 mod check;
-mod preview;
+pub(crate) mod preview;
 mod preview_json;
 mod preview_svg;
 mod report;
@@ -42,6 +42,7 @@ pub const EXIT_TROUBLE: u8 = 2;
 
 const USAGE: &str = "\
 Usage:
+  sinumerik-lsp [serve]                  the language server on stdin and stdout
   sinumerik-lsp check [OPTIONS] PATH...  check programs (folders recursively)
   sinumerik-lsp preview [--format json|csv|svg] [--max-segments N] [--config FILE] FILE
                                          the resolved end point of every move
@@ -63,6 +64,11 @@ problem.
 /// Runs the program with the process's arguments (the first is the program name) on the real stdout
 /// and stderr, and returns the exit code.
 pub fn run(args: impl IntoIterator<Item = OsString>) -> u8 {
+    let args: Vec<OsString> = args.into_iter().collect();
+    // The server owns stdin and stdout, so it starts before anything locks them.
+    if matches!(parse_args(args.clone()), Ok(Command::LanguageServer)) {
+        return crate::lsp::serve_stdio();
+    }
     let stdout = io::stdout();
     let mut stdout = io::BufWriter::new(stdout.lock());
     let stderr = io::stderr();
@@ -88,9 +94,12 @@ pub fn run_with_output(
     };
     let result = match command {
         Command::LanguageServer => {
-            // Editors start a language server by running its binary without arguments, so this is
-            // the one place where the server will start. Until it exists, no command is a usage error.
-            let _ = write!(stderr, "sinumerik-lsp: a command is needed.\n\n{USAGE}");
+            // `run` starts the server on the process's stdio before this; with other streams (tests)
+            // there is nothing to serve on.
+            let _ = write!(
+                stderr,
+                "sinumerik-lsp: the language server needs stdin and stdout.\n\n{USAGE}"
+            );
             return EXIT_TROUBLE;
         }
         Command::Help => write!(stdout, "{}\n\n{USAGE}", version_line()).map(|()| EXIT_OK),

@@ -7,7 +7,7 @@ use super::source_file::read_source_file;
 use super::{EXIT_ERRORS_FOUND, EXIT_OK, EXIT_TROUBLE};
 use crate::analysis::{analyze_program, visit_moves, Move, ProgramKind};
 use crate::config::{discover_config_file, load_config_file, MachineConfig};
-use crate::diagnostics::Severity;
+use crate::diagnostics::{LineDiagnostic, Severity, Span};
 use std::io::{self, Write};
 use std::path::Path;
 
@@ -88,6 +88,32 @@ pub(crate) fn run_preview(
     } else {
         EXIT_OK
     })
+}
+
+/// The JSON document of `preview` for `moves` and `diagnostics` of the program `file`, as the language
+/// server's `sinumerik.endpointPreview` returns it; `columns` gives the 1-based character columns of
+/// a span in a 0-based line.
+pub(crate) fn write_preview_json(
+    out: &mut dyn Write,
+    file: &str,
+    metric: bool,
+    moves: &[Move],
+    diagnostics: &[LineDiagnostic],
+    columns: &mut dyn FnMut(usize, Span) -> (usize, usize),
+) -> io::Result<()> {
+    preview_json::write_header(out, file, metric)?;
+    for (index, movement) in moves.iter().enumerate() {
+        preview_json::write_move(out, movement, index == 0)?;
+    }
+    let columns = std::cell::RefCell::new(columns);
+    preview_json::write_footer(out, diagnostics, &|item| {
+        (columns.borrow_mut())(item.line, item.diagnostic.span)
+    })
+}
+
+/// The 1-based character columns of a span in one line of text.
+pub(crate) fn line_columns(line: &str, span: Span) -> (usize, usize) {
+    ProgramLines::new(line).columns(0, span)
 }
 
 fn config_for(options: &PreviewOptions) -> Result<MachineConfig, String> {

@@ -54,7 +54,15 @@ pub(crate) fn write_move(out: &mut dyn Write, movement: &Move, first: bool) -> i
             out.write_all(b",\"radius\":")?;
             write_number(out, arc.radius)?;
             let direction = if arc.clockwise { "cw" } else { "ccw" };
-            write!(out, ",\"direction\":\"{direction}\",\"sweep\":")?;
+            let machine_direction = match arc.machine_clockwise {
+                Some(true) => "\"cw\"",
+                Some(false) => "\"ccw\"",
+                None => "null",
+            };
+            write!(
+                out,
+                ",\"direction\":\"{direction}\",\"mcs_direction\":{machine_direction},\"sweep\":"
+            )?;
             write_number(out, arc.sweep)?;
             out.write_all(b"}")?;
         }

@@ -1,0 +1,318 @@
+//! The open documents: each one's text (changed synchronously, in the order edits arrive) and its
+//! analysis (brought up to date on a snapshot, off the async threads), and the worker that publishes
+//! the diagnostics of the newest version and never those of a version already replaced.
+//!
+//! Lock order: a document's `analysis` lock may be taken before its `text` lock, never after it.
+//! The `text` lock is only held for short, non-blocking work (applying an edit, taking a snapshot).
+
+use crate::analysis::document::{DocumentAnalysis, LineSource};
+use crate::analysis::ProgramKind;
+use crate::config::MachineConfig;
+use crate::lsp::convert::{diagnostics_to_lsp, PositionEncoding};
+use crate::lsp::log;
+use crate::lsp::outgoing::{Outgoing, OutgoingSender};
+use crate::lsp::text_document::{
+    apply_changes, core_line_count, ChangeError, DocumentText, RopeLineChange, RopeLines,
+};
+use ropey::Rope;
+use std::collections::HashMap;
+use std::path::PathBuf;
+use std::sync::{Arc, Mutex, MutexGuard};
+use tower_lsp_server::ls_types::{TextDocumentContentChangeEvent, Uri};
+
+/// Locks a mutex, also after a panic elsewhere poisoned it: the data behind our locks stays
+/// consistent at every unlock, and the server must keep serving.
+pub fn lock<T>(mutex: &Mutex<T>) -> MutexGuard<'_, T> {
+    mutex
+        .lock()
+        .unwrap_or_else(|poisoned| poisoned.into_inner())
+}
+
+/// What changed since the analysis last looked at the text.
+#[derive(Debug, Clone, Copy)]
+enum Pending {
+    Nothing,
+    Lines(RopeLineChange),
+    /// The configuration changed, or the analysis was lost: start from scratch.
+    Everything,
+}
+
+struct TextState {
+    text: DocumentText,
+    /// Counts every change of text or configuration; results of an older revision are stale.
+    revision: u64,
+    pending: Pending,
+    config: Arc<MachineConfig>,
+    worker_running: bool,
+    closed: bool,
+}
+
+/// An analysis together with the exact text it describes.
+pub struct Analysed {
+    pub analysis: DocumentAnalysis,
+    pub rope: Rope,
+    pub version: i32,
+    pub revision: u64,
+    config: Arc<MachineConfig>,
+}
+
+impl Analysed {
+    pub fn lines(&self) -> RopeLines<'_> {
+        RopeLines::new(&self.rope)
+    }
+}
+
+pub struct OpenDocument {
+    pub uri: Uri,
+    /// The file behind a `file:` URI.
+    pub path: Option<PathBuf>,
+    pub kind: ProgramKind,
+    text: Mutex<TextState>,
+    analysis: Mutex<Option<Analysed>>,
+}
+
+/// What a worker needs besides the document.
+#[derive(Clone)]
+pub struct WorkerContext {
+    pub outgoing: OutgoingSender,
+    pub encoding: PositionEncoding,
+}
+
+impl OpenDocument {
+    pub fn new(
+        uri: Uri,
+        path: Option<PathBuf>,
+        kind: ProgramKind,
+        text: &str,
+        version: i32,
+        config: Arc<MachineConfig>,
+    ) -> OpenDocument {
+        OpenDocument {
+            uri,
+            path,
+            kind,
+            text: Mutex::new(TextState {
+                text: DocumentText::new(text, version),
+                revision: 1,
+                pending: Pending::Everything,
+                config,
+                worker_running: false,
+                closed: false,
+            }),
+            analysis: Mutex::new(None),
+        }
+    }
+
+    /// The current revision; a request remembers it to know whether its answer is still current.
+    pub fn revision(&self) -> u64 {
+        lock(&self.text).revision
+    }
+
+    /// The version and the whole text as they are now.
+    pub fn text_now(&self) -> (i32, String) {
+        let text = lock(&self.text);
+        (text.text.version, text.text.rope.to_string())
+    }
+
+    /// Applies a `didChange` synchronously and starts the analysis. Called before any `.await` of
+    /// the handler, so edits are applied in the order they arrive.
+    pub fn change(
+        self: &Arc<Self>,
+        changes: &[TextDocumentContentChangeEvent],
+        version: i32,
+        context: &WorkerContext,
+    ) -> Result<(), ChangeError> {
+        let mut text = lock(&self.text);
+        let changed = apply_changes(&mut text.text, changes, version, context.encoding)?;
+        if let Some(line_change) = changed {
+            text.pending = match text.pending {
+                Pending::Nothing => Pending::Lines(line_change),
+                Pending::Lines(earlier) => Pending::Lines(earlier.then(line_change)),
+                Pending::Everything => Pending::Everything,
+            };
+        }
+        text.revision += 1;
+        self.schedule(&mut text, context);
+        Ok(())
+    }
+
+    /// Replaces the configuration (it changed on disk or in the settings) and re-analyses.
+    pub fn set_config(self: &Arc<Self>, config: Arc<MachineConfig>, context: &WorkerContext) {
+        let mut text = lock(&self.text);
+        if *text.config == *config {
+            return;
+        }
+        text.config = config;
+        text.pending = Pending::Everything;
+        text.revision += 1;
+        self.schedule(&mut text, context);
+    }
+
+    /// Starts the first analysis after `didOpen`.
+    pub fn start(self: &Arc<Self>, context: &WorkerContext) {
+        let mut text = lock(&self.text);
+        self.schedule(&mut text, context);
+    }
+
+    /// Marks the document closed and clears its diagnostics; a running worker publishes nothing more.
+    pub fn close(&self, context: &WorkerContext) {
+        let mut text = lock(&self.text);
+        text.closed = true;
+        text.revision += 1;
+        // Sent under the lock, so no publication of a worker can come after it.
+        context.outgoing.send(Outgoing::Diagnostics {
+            uri: self.uri.clone(),
+            version: None,
+            diagnostics: Vec::new(),
+        });
+    }
+
+    fn schedule(self: &Arc<Self>, text: &mut TextState, context: &WorkerContext) {
+        if text.worker_running || text.closed {
+            return;
+        }
+        text.worker_running = true;
+        let document = Arc::clone(self);
+        let context = context.clone();
+        tokio::task::spawn_blocking(move || document.run_worker(&context));
+    }
+
+    /// Brings the analysis up to date with the newest text and returns it, locked. Waits for a
+    /// worker that is analysing, and may itself do the work a worker would have done.
+    pub fn catch_up(&self) -> MutexGuard<'_, Option<Analysed>> {
+        let mut slot = lock(&self.analysis);
+        let (rope, version, revision, pending, config) = {
+            let mut text = lock(&self.text);
+            if slot
+                .as_ref()
+                .is_some_and(|analysed| analysed.revision == text.revision)
+            {
+                return slot;
+            }
+            let pending = std::mem::replace(&mut text.pending, Pending::Nothing);
+            (
+                text.text.rope.clone(),
+                text.text.version,
+                text.revision,
+                pending,
+                text.config.clone(),
+            )
+        };
+        let updated = match (slot.as_mut(), pending) {
+            (Some(analysed), Pending::Lines(change)) if Arc::ptr_eq(&analysed.config, &config) => {
+                let source = RopeLines::new(&rope);
+                let line_change =
+                    change.to_core(core_line_count(&analysed.rope), source.line_count());
+                analysed.analysis.update(
+                    &source,
+                    line_change.first,
+                    line_change.removed,
+                    line_change.inserted,
+                );
+                true
+            }
+            _ => false,
+        };
+        if updated {
+            if let Some(analysed) = slot.as_mut() {
+                analysed.rope = rope;
+                analysed.version = version;
+                analysed.revision = revision;
+            }
+        } else {
+            let analysis = DocumentAnalysis::new(&RopeLines::new(&rope), config.clone(), self.kind);
+            *slot = Some(Analysed {
+                analysis,
+                rope,
+                version,
+                revision,
+                config,
+            });
+        }
+        slot
+    }
+
+    /// Analyses until the analysis matches the newest revision, then publishes its diagnostics.
+    fn run_worker(&self, context: &WorkerContext) {
+        loop {
+            let started = std::time::Instant::now();
+            let result = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
+                let slot = self.catch_up();
+                slot.as_ref().map(|analysed| {
+                    let lines = analysed.lines();
+                    let diagnostics = diagnostics_to_lsp(
+                        analysed.analysis.diagnostics(),
+                        |line_idx| lines.line(line_idx),
+                        context.encoding,
+                    );
+                    (analysed.revision, analysed.version, diagnostics)
+                })
+            }));
+            log::slow(
+                "analysis and diagnostics",
+                started.elapsed(),
+                &context.outgoing,
+            );
+            match result {
+                Ok(Some((revision, version, diagnostics))) => {
+                    let mut text = lock(&self.text);
+                    if text.closed {
+                        text.worker_running = false;
+                        return;
+                    }
+                    if text.revision == revision {
+                        // Sent under the lock: a newer revision's publication cannot overtake it.
+                        context.outgoing.send(Outgoing::Diagnostics {
+                            uri: self.uri.clone(),
+                            version: Some(version),
+                            diagnostics,
+                        });
+                        text.worker_running = false;
+                        return;
+                    }
+                    // The text changed meanwhile: analyse again.
+                }
+                Ok(None) => {
+                    lock(&self.text).worker_running = false;
+                    return;
+                }
+                Err(_) => {
+                    *lock(&self.analysis) = None;
+                    let mut text = lock(&self.text);
+                    text.pending = Pending::Everything;
+                    text.worker_running = false;
+                    context.outgoing.log_error(format!(
+                        "the analysis of {} failed; it is retried at the next edit",
+                        self.uri.as_str()
+                    ));
+                    return;
+                }
+            }
+        }
+    }
+}
+
+/// The open documents by URI.
+#[derive(Default)]
+pub struct Documents {
+    map: Mutex<HashMap<Uri, Arc<OpenDocument>>>,
+}
+
+impl Documents {
+    pub fn get(&self, uri: &Uri) -> Option<Arc<OpenDocument>> {
+        lock(&self.map).get(uri).cloned()
+    }
+
+    /// Adds a document; returns the one it replaced (a second `didOpen` without `didClose`).
+    pub fn insert(&self, document: Arc<OpenDocument>) -> Option<Arc<OpenDocument>> {
+        lock(&self.map).insert(document.uri.clone(), document)
+    }
+
+    pub fn remove(&self, uri: &Uri) -> Option<Arc<OpenDocument>> {
+        lock(&self.map).remove(uri)
+    }
+
+    pub fn all(&self) -> Vec<Arc<OpenDocument>> {
+        lock(&self.map).values().cloned().collect()
+    }
+}

@@ -1,0 +1,77 @@
+//! `sinumerik.endpointPreview`: the JSON document of `sinumerik-lsp preview` for an open document
+//! (its current text) or for a file on disk, optionally for some of its lines only.
+
+use crate::analysis::document::{DocumentAnalysis, LineSource, TextLines};
+use crate::analysis::ProgramKind;
+use crate::cli::preview::{line_columns, write_preview_json};
+use crate::cli::source_file::read_source_file;
+use crate::config::MachineConfig;
+use crate::lsp::documents::Analysed;
+use serde_json::Value;
+use std::path::Path;
+use std::sync::Arc;
+
+/// Lines `start ..= end` (0-based); a missing end is the end of the document.
+#[derive(Debug, Clone, Copy)]
+pub struct LineSelection {
+    pub start: Option<u32>,
+    pub end: Option<u32>,
+}
+
+impl LineSelection {
+    fn range(self, line_count: usize) -> std::ops::Range<usize> {
+        let start = self.start.map_or(0, |start| start as usize).min(line_count);
+        let end = self
+            .end
+            .map_or(line_count, |end| (end as usize).saturating_add(1))
+            .min(line_count);
+        start..end.max(start)
+    }
+}
+
+fn preview(
+    analysis: &DocumentAnalysis,
+    source: &dyn LineSource,
+    label: &str,
+    lines: LineSelection,
+) -> Result<Value, String> {
+    let range = lines.range(source.line_count());
+    let moves = analysis.moves(source, range.clone());
+    let diagnostics = analysis.diagnostics();
+    let first = diagnostics.partition_point(|item| item.line < range.start);
+    let last = diagnostics.partition_point(|item| item.line < range.end);
+    let mut json = Vec::new();
+    write_preview_json(
+        &mut json,
+        label,
+        analysis.config().metric,
+        &moves,
+        &diagnostics[first..last.max(first)],
+        &mut |line_idx, span| line_columns(&source.line(line_idx), span),
+    )
+    .map_err(|error| format!("cannot write the preview: {error}"))?;
+    serde_json::from_slice(&json).map_err(|error| format!("cannot read the preview back: {error}"))
+}
+
+/// The preview of an open document, from its up-to-date analysis.
+pub fn preview_open(
+    analysed: &Analysed,
+    label: &str,
+    lines: LineSelection,
+) -> Result<Value, String> {
+    preview(&analysed.analysis, &analysed.lines(), label, lines)
+}
+
+/// The preview of a file on disk, read as `check` reads it (UTF-8, else Windows-1252).
+pub fn preview_file(
+    path: &Path,
+    label: &str,
+    config: Arc<MachineConfig>,
+    kind: ProgramKind,
+    lines: LineSelection,
+) -> Result<Value, String> {
+    let source = read_source_file(path).map_err(|error| format!("{}: {error}", path.display()))?;
+    let text_lines = TextLines::new(&source.text);
+    let analysis = DocumentAnalysis::new(&text_lines, config, kind);
+    preview(&analysis, &text_lines, label, lines)
+}

@@ -1,0 +1,473 @@
+//! The hover: on an axis word, how its value resolves; on a G function, what it does, its group and
+//! the function of that group in effect before the block; anywhere else in a block, the modal state
+//! in effect and the block's end point. Built from the analysis's `BlockReport` only.
+
+use crate::analysis::document::{
+    BlockReport, LineSource, ResolutionMode, StateSummary, WordResolution,
+};
+use crate::config::{AxisKind, MachineConfig};
+use crate::diagnostics::Span;
+use crate::lsp::convert::{character_to_byte, span_to_range, PositionEncoding};
+use crate::lsp::documents::Analysed;
+use crate::lsp::gcode_help;
+use crate::lsp::numbers::{fixed, same, short, term};
+use crate::lsp::words::{word_at, words, Word, WordValue};
+use crate::syntax::ast::Modifier;
+use crate::syntax::gcodes::GCode;
+use std::fmt::Write;
+use tower_lsp_server::ls_types::{Hover, HoverContents, MarkupContent, MarkupKind, Position};
+
+/// The hover at `position` of the analysed text, `None` on a line without words.
+pub fn hover(analysed: &Analysed, position: Position, encoding: PositionEncoding) -> Option<Hover> {
+    let lines = analysed.lines();
+    let line_idx = position.line as usize;
+    if line_idx >= lines.line_count() {
+        return None;
+    }
+    let line = lines.line(line_idx);
+    let line_words = words(&line);
+    if line_words.is_empty() {
+        return None;
+    }
+    let offset = character_to_byte(&line, position.character, encoding);
+    let config = analysed.analysis.config();
+    let report = analysed.analysis.block_report(&lines, line_idx);
+    let word = word_at(&line_words, offset);
+    let (markdown, span) = match word {
+        Some(word) => match axis_of(word, config) {
+            Some(axis) => (
+                axis_hover(word, &axis, &line_words, &report, config),
+                Some(word.span.clone()),
+            ),
+            None => match gcode_of(word) {
+                Some(code) => (gcode_hover(code, &report), Some(word.span.clone())),
+                None => (block_hover(&report, config), None),
+            },
+        },
+        None => (block_hover(&report, config), None),
+    };
+    Some(Hover {
+        contents: HoverContents::Markup(MarkupContent {
+            kind: MarkupKind::Markdown,
+            value: markdown,
+        }),
+        range: span
+            .map(|span| span_to_range(line_idx, &line, Span::new(span.start, span.end), encoding)),
+    })
+}
+
+/// The configured axis a word writes, if it is an axis word.
+pub fn axis_of(word: &Word<'_>, config: &MachineConfig) -> Option<String> {
+    if matches!(word.value, WordValue::None) {
+        return None;
+    }
+    let name = word.upper_name();
+    config.axis(&name).map(|axis| axis.name.clone())
+}
+
+fn gcode_of(word: &Word<'_>) -> Option<GCode> {
+    match word.value {
+        WordValue::Number(Some(number)) if word.name.eq_ignore_ascii_case("G") => {
+            (number >= 0.0 && number.fract() == 0.0 && number < 10_000.0)
+                .then(|| GCode::from_number(number as u32))
+                .flatten()
+        }
+        WordValue::None => GCode::from_name(word.name),
+        _ => None,
+    }
+}
+
+fn units_label(config: &MachineConfig, kind: Option<AxisKind>) -> &'static str {
+    match kind {
+        Some(kind) if kind.is_rotary() => "°",
+        _ if config.metric => "mm",
+        _ => "in",
+    }
+}
+
+fn axis_hover(
+    word: &Word<'_>,
+    axis: &str,
+    line_words: &[Word<'_>],
+    report: &BlockReport,
+    config: &MachineConfig,
+) -> String {
+    let from_core = report.words.iter().find(|resolution| {
+        resolution.span.start() <= word.span.start
+            && word.span.start < resolution.span.end().max(resolution.span.start() + 1)
+    });
+    let resolution = match from_core {
+        Some(resolution) => resolution.clone(),
+        None => resolution_from_movement(word, axis, line_words, report, config),
+    };
+    let mut text = explain_resolution(&resolution, &report.before, config);
+    if report.before.flow_uncertain {
+        text.push_str("\n\n⚠ A label, jump or loop comes before this block: the control may run another path than program order, so these values may not be the control's.");
+    }
+    text
+}
+
+/// How a word resolves, worked out from the block's move when the analysis gave no per-word
+/// report: the arithmetic shown is checked against the analysis's end point, never assumed.
+fn resolution_from_movement(
+    word: &Word<'_>,
+    axis: &str,
+    line_words: &[Word<'_>],
+    report: &BlockReport,
+    config: &MachineConfig,
+) -> WordResolution {
+    let lookup = |values: &[(std::sync::Arc<str>, f64)]| {
+        values
+            .iter()
+            .find(|(name, _)| &**name == axis)
+            .map(|(_, value)| *value)
+    };
+    let movement = report.movement.as_ref();
+    let machine_block = line_words.iter().any(|other| {
+        let name = other.upper_name();
+        name == "SUPA" || (name == "G" && matches!(other.value, WordValue::Number(Some(number)) if number == 53.0 || number == 153.0))
+    });
+    let mode = if machine_block {
+        ResolutionMode::Machine
+    } else if let Some((name, _)) = word.modifier() {
+        Modifier::from_name(name).map_or(ResolutionMode::Unknown, ResolutionMode::Override)
+    } else {
+        match report.before.distance.as_deref() {
+            Some("G90") => ResolutionMode::Absolute,
+            Some("G91") => ResolutionMode::Incremental,
+            _ => ResolutionMode::Unknown,
+        }
+    };
+    let axis_kind = config.axis(axis).map(|axis| axis.kind);
+    let unit_factor = if axis_kind.is_some_and(AxisKind::is_rotary) {
+        Some(1.0)
+    } else {
+        match report.before.units.as_deref() {
+            Some("G70" | "G700") => Some(if config.metric { 25.4 } else { 1.0 }),
+            Some("G71" | "G710") => Some(if config.metric { 1.0 } else { 1.0 / 25.4 }),
+            _ => None,
+        }
+    };
+    let end = movement.and_then(|movement| lookup(&movement.end));
+    let start = movement.and_then(|movement| lookup(&movement.start));
+    let unknown_reason = end.is_none().then(|| {
+        if (matches!(mode, ResolutionMode::Incremental)
+            || matches!(mode, ResolutionMode::Override(Modifier::Ic)))
+            && start.is_none()
+        {
+            return "the move is incremental and the axis position before the block is not known"
+                .to_string();
+        }
+        "the analysis cannot follow this value here (see the block's findings)".to_string()
+    });
+    WordResolution {
+        span: Span::new(word.span.start, word.span.end),
+        axis: axis.to_string(),
+        programmed: word.literal(),
+        mode,
+        unit_factor,
+        read_as_diameter: axis_kind == Some(AxisKind::Transverse)
+            && movement.is_some_and(|movement| movement.transverse_as_diameter),
+        shown_as_diameter: axis_kind == Some(AxisKind::Transverse)
+            && movement.is_some_and(|movement| movement.transverse_as_diameter),
+        explained: false,
+        start,
+        end,
+        machine: movement
+            .and_then(|movement| movement.machine.as_deref())
+            .and_then(lookup),
+        unknown_reason,
+    }
+}
+
+fn is_incremental(mode: ResolutionMode) -> bool {
+    matches!(
+        mode,
+        ResolutionMode::Incremental
+            | ResolutionMode::Override(
+                Modifier::Ic | Modifier::Dic | Modifier::Ric | Modifier::Cic
+            )
+    )
+}
+
+fn mode_note(mode: ResolutionMode, before: &StateSummary) -> String {
+    let modal = before.distance.as_deref().unwrap_or("the modal G90/G91");
+    match mode {
+        ResolutionMode::Absolute => "G90: absolute".to_string(),
+        ResolutionMode::Incremental => "G91: incremental".to_string(),
+        ResolutionMode::Machine => {
+            "G53/G153/SUPA: a machine position for this block only".to_string()
+        }
+        ResolutionMode::Unknown => {
+            "G90 or G91 is inherited from the caller and not known here".to_string()
+        }
+        ResolutionMode::Override(modifier) => {
+            let what = match modifier {
+                Modifier::Ac => "absolute for this block only",
+                Modifier::Ic => "incremental for this block only",
+                Modifier::Dc => "absolute, the rotary axis takes the shortest way",
+                Modifier::Acp => "absolute, the rotary axis turns in the positive direction",
+                Modifier::Acn => "absolute, the rotary axis turns in the negative direction",
+                Modifier::Dac => "absolute diameter for this block only",
+                Modifier::Dic => "incremental diameter for this block only",
+                Modifier::Rac => "absolute radius for this block only",
+                Modifier::Ric => "incremental radius for this block only",
+                Modifier::Cac => "coded position, absolute",
+                Modifier::Cic => "coded position, incremental",
+                Modifier::Cdc => "coded position, shortest way",
+                Modifier::Cacp => "coded position, positive direction",
+                Modifier::Cacn => "coded position, negative direction",
+            };
+            format!(
+                "{}: {what}; {modal} stays active",
+                modifier.as_str().to_ascii_uppercase()
+            )
+        }
+    }
+}
+
+/// The explanation of one resolved word, e.g. `Z = 90.000 + (-32.000) = **58.000** mm (IC: ...)`.
+pub fn explain_resolution(
+    resolution: &WordResolution,
+    before: &StateSummary,
+    config: &MachineConfig,
+) -> String {
+    let axis = &resolution.axis;
+    let axis_kind = config.axis(axis).map(|axis| axis.kind);
+    let unit = units_label(config, axis_kind);
+    let note = mode_note(resolution.mode, before);
+    let mut text = String::new();
+    let Some(end) = resolution.end else {
+        let reason = resolution
+            .unknown_reason
+            .clone()
+            .unwrap_or_else(|| "the analysis cannot follow this value here".to_string());
+        let _ = write!(text, "{axis} = **unknown**: {reason} ({note})");
+        return text;
+    };
+    let factor = resolution.unit_factor.unwrap_or(1.0);
+    let converted = resolution.programmed.map(|programmed| programmed * factor);
+    let inch = resolution
+        .unit_factor
+        .is_some_and(|factor| !same(factor, 1.0));
+    // The programmed value as a term: `1.000 in (25.400 mm)` under G70, else the value itself.
+    let programmed_term = |programmed: f64| -> String {
+        if inch {
+            let program_unit = if config.metric { "in" } else { "mm" };
+            format!(
+                "{} {program_unit} ({} {unit})",
+                term(programmed),
+                fixed(programmed * factor)
+            )
+        } else {
+            term(programmed)
+        }
+    };
+    let formula = match (resolution.programmed, converted, resolution.start) {
+        (Some(programmed), Some(converted), Some(start))
+            if is_incremental(resolution.mode) && same(start + converted, end) =>
+        {
+            Some(format!(
+                "{axis} = {} + {} = **{}** {unit}",
+                term(start),
+                programmed_term(programmed),
+                fixed(end)
+            ))
+        }
+        (Some(programmed), Some(converted), _)
+            if !is_incremental(resolution.mode) && same(converted, end) && inch =>
+        {
+            Some(format!(
+                "{axis} = {} = **{}** {unit}",
+                programmed_term(programmed),
+                fixed(end)
+            ))
+        }
+        _ => None,
+    };
+    match formula {
+        Some(formula) => {
+            let _ = write!(text, "{formula} ({note})");
+        }
+        None => match resolution.start {
+            Some(start) if !same(start, end) => {
+                let _ = write!(
+                    text,
+                    "{axis}: {} → **{}** {unit} ({note})",
+                    fixed(start),
+                    fixed(end)
+                );
+            }
+            _ => {
+                let _ = write!(text, "{axis} = **{}** {unit} ({note})", fixed(end));
+            }
+        },
+    }
+    if resolution.read_as_diameter {
+        let _ = write!(
+            text,
+            "\n\nDiameter {} {unit}, radius {} {unit}",
+            fixed(end),
+            fixed(end / 2.0)
+        );
+    }
+    if let Some(machine) = resolution.machine {
+        let shown_machine = if resolution.read_as_diameter {
+            machine * 2.0
+        } else {
+            machine
+        };
+        if !same(shown_machine, end) {
+            let radius_note = if axis_kind == Some(AxisKind::Transverse) {
+                " (radius)"
+            } else {
+                ""
+            };
+            let _ = write!(
+                text,
+                "\n\nAfter the programmable frame (machine coordinates): {axis} = **{}** {unit}{radius_note}",
+                fixed(machine)
+            );
+        }
+    }
+    text
+}
+
+/// The value of a group in effect before the block, when the analysis follows that group.
+fn group_value(group: u8, before: &StateSummary) -> Option<Option<&str>> {
+    let value = match group {
+        1 => &before.motion,
+        6 => &before.plane,
+        8 => &before.settable_offset,
+        13 => &before.units,
+        14 => &before.distance,
+        29 => &before.diameter,
+        _ => return None,
+    };
+    Some(value.as_deref())
+}
+
+fn gcode_hover(code: GCode, report: &BlockReport) -> String {
+    let name = code.name();
+    let group = code.group();
+    let mut text = format!("**{name}**");
+    if let Some(description) = gcode_help::describe(&name) {
+        let _ = write!(text, " — {description}");
+    } else if matches!(code, GCode::WorkOffset(_)) {
+        text.push_str(" — Settable work offset from the machine's offset table.");
+    }
+    let modality = if code.is_modal() {
+        "modal: stays active until another function of the group"
+    } else {
+        "non-modal: acts in this block only"
+    };
+    let _ = write!(
+        text,
+        "\n\nGroup {group} ({}), {modality}.",
+        gcode_help::group_name(group)
+    );
+    match group_value(group, &report.before) {
+        Some(Some(value)) => {
+            let _ = write!(text, " Before this block: **{value}**.");
+        }
+        Some(None) => {
+            text.push_str(" Before this block: **unknown** (inherited from the caller, or lost).")
+        }
+        None => {}
+    }
+    text
+}
+
+fn or_unknown(value: &Option<String>) -> &str {
+    value.as_deref().unwrap_or("unknown")
+}
+
+fn axes_text(values: &[(std::sync::Arc<str>, f64)], unknown: &[std::sync::Arc<str>]) -> String {
+    let mut parts: Vec<String> = values
+        .iter()
+        .map(|(name, value)| format!("{name}{}", short(*value)))
+        .collect();
+    parts.extend(
+        unknown
+            .iter()
+            .filter(|name| !values.iter().any(|(known, _)| known == *name))
+            .map(|name| format!("{name}?")),
+    );
+    parts.join(" ")
+}
+
+/// The modal state in effect before the block and the block's end point.
+fn block_hover(report: &BlockReport, config: &MachineConfig) -> String {
+    let before = &report.before;
+    let mut text = String::from("**Modal state before this block**\n\n");
+    let pole = match &before.pole {
+        Some(None) => "none (the workpiece zero)".to_string(),
+        Some(Some((first, second))) => format!("{} {}", short(*first), short(*second)),
+        None => "unknown".to_string(),
+    };
+    let frame = match before.frame_is_identity {
+        Some(true) => "none",
+        Some(false) => "active",
+        None => "unknown",
+    };
+    let feed = before
+        .feed
+        .map_or_else(|| "not programmed or unknown".to_string(), short);
+    let _ = write!(
+        text,
+        "- motion {} · plane {} · units {} · {}\n- diameter mode {} · work offset {}\n- pole {pole} · programmable frame {frame} · feed {feed}",
+        or_unknown(&before.motion),
+        or_unknown(&before.plane),
+        or_unknown(&before.units),
+        or_unknown(&before.distance),
+        or_unknown(&before.diameter),
+        or_unknown(&before.settable_offset),
+    );
+    match &report.movement {
+        Some(movement) => {
+            let _ = write!(
+                text,
+                "\n\n**End point** ({}): {}",
+                movement.motion,
+                axes_text(&movement.end, &movement.uncertain)
+            );
+            if let Some(machine) = &movement.machine {
+                if machine_differs(
+                    machine,
+                    &movement.end,
+                    movement.transverse_as_diameter,
+                    config,
+                ) {
+                    let _ = write!(text, "\n\nMachine coordinates (after the programmable frame, radius on transverse axes): {}", axes_text(machine, &[]));
+                }
+            }
+        }
+        None => text.push_str("\n\nThis block does not move an axis."),
+    }
+    if before.flow_uncertain {
+        text.push_str("\n\n⚠ A label, jump or loop comes before this block: the values may not be the control's.");
+    }
+    text
+}
+
+/// Whether the machine coordinates differ from the program's end point (a frame moves the point).
+pub fn machine_differs(
+    machine: &[(std::sync::Arc<str>, f64)],
+    end: &[(std::sync::Arc<str>, f64)],
+    transverse_as_diameter: bool,
+    config: &MachineConfig,
+) -> bool {
+    machine.iter().any(|(name, machine_value)| {
+        let transverse = config
+            .axis(name)
+            .is_some_and(|axis| axis.kind == AxisKind::Transverse);
+        let shown = if transverse && transverse_as_diameter {
+            machine_value * 2.0
+        } else {
+            *machine_value
+        };
+        end.iter()
+            .find(|(end_name, _)| end_name == name)
+            .is_some_and(|(_, end_value)| !same(shown, *end_value))
+    })
+}

@@ -1,0 +1,129 @@
+//! Inlay hints: the resolved end point (`⟶ X115 Z60`) at the end of each moving block whose end
+//! point is not plain to read from its words (incremental, AC/IC, polar, inch, a frame, unknown).
+
+use crate::analysis::document::LineSource;
+use crate::analysis::Move;
+use crate::config::MachineConfig;
+use crate::lsp::convert::{end_of_line, PositionEncoding};
+use crate::lsp::documents::Analysed;
+use crate::lsp::hover::{axis_of, machine_differs};
+use crate::lsp::numbers::{same, short};
+use crate::lsp::settings::InlayHintMode;
+use crate::lsp::words::{words, Word, WordValue};
+use tower_lsp_server::ls_types::{InlayHint, InlayHintLabel, InlayHintTooltip, Range};
+
+/// The hints for the lines of `range` (both ends included).
+pub fn inlay_hints(
+    analysed: &Analysed,
+    range: Range,
+    mode: InlayHintMode,
+    encoding: PositionEncoding,
+) -> Vec<InlayHint> {
+    if mode == InlayHintMode::Off {
+        return Vec::new();
+    }
+    let lines = analysed.lines();
+    let first = range.start.line as usize;
+    let last = (range.end.line as usize)
+        .saturating_add(1)
+        .min(lines.line_count());
+    if first >= last {
+        return Vec::new();
+    }
+    let config = analysed.analysis.config();
+    analysed
+        .analysis
+        .moves(&lines, first..last)
+        .iter()
+        .filter_map(|movement| {
+            let line = lines.line(movement.line);
+            let line_words = words(&line);
+            if mode == InlayHintMode::NotPlain && is_plain(movement, &line_words, config) {
+                return None;
+            }
+            Some(InlayHint {
+                position: end_of_line(movement.line, &line, encoding),
+                label: InlayHintLabel::String(label(movement, config)),
+                kind: None,
+                text_edits: None,
+                tooltip: Some(InlayHintTooltip::String(
+                    "Resolved end point of this block in program coordinates (? = unknown)"
+                        .to_string(),
+                )),
+                padding_left: Some(true),
+                padding_right: None,
+                data: None,
+            })
+        })
+        .collect()
+}
+
+/// `⟶ X115 Z60`, with `X?` for an unknown axis and the machine position when a frame moves it.
+pub fn label(movement: &Move, config: &MachineConfig) -> String {
+    let mut parts: Vec<String> = movement
+        .end
+        .iter()
+        .map(|(name, value)| format!("{name}{}", short(*value)))
+        .collect();
+    let mut flow_uncertain = false;
+    for name in &movement.uncertain {
+        if movement.end.iter().any(|(known, _)| known == name) {
+            flow_uncertain = true;
+        } else {
+            parts.push(format!("{name}?"));
+        }
+    }
+    let mut label = format!("⟶ {}", parts.join(" "));
+    if let Some(machine) = &movement.machine {
+        if machine_differs(
+            machine,
+            &movement.end,
+            movement.transverse_as_diameter,
+            config,
+        ) {
+            let machine_parts: Vec<String> = machine
+                .iter()
+                .map(|(name, value)| format!("{name}{}", short(*value)))
+                .collect();
+            label.push_str(&format!(" (machine {})", machine_parts.join(" ")));
+        }
+    }
+    if flow_uncertain {
+        label.push_str(" (flow uncertain)");
+    }
+    label
+}
+
+/// A block's end point is plain to read when every axis it writes is a constant equal to the
+/// resolved end point, no polar word moves it, nothing is unknown and no frame moves it.
+pub fn is_plain(movement: &Move, line_words: &[Word<'_>], config: &MachineConfig) -> bool {
+    if !movement.uncertain.is_empty() {
+        return false;
+    }
+    let polar = line_words.iter().any(|word| {
+        let name = word.upper_name();
+        (name == "AP" || name == "RP") && !matches!(word.value, WordValue::None)
+    });
+    if polar {
+        return false;
+    }
+    let axes_plain = line_words.iter().all(|word| match axis_of(word, config) {
+        None => true,
+        Some(axis) => match (
+            &word.value,
+            movement.end.iter().find(|(name, _)| **name == *axis),
+        ) {
+            (WordValue::Number(Some(written)), Some((_, end))) => same(*written, *end),
+            _ => false,
+        },
+    });
+    axes_plain
+        && !movement.machine.as_ref().is_some_and(|machine| {
+            machine_differs(
+                machine,
+                &movement.end,
+                movement.transverse_as_diameter,
+                config,
+            )
+        })
+}

@@ -1,0 +1,65 @@
+//! The language server: the only module that knows the Language Server Protocol. Everything below
+//! it (`analysis`, `syntax`, `config`, `diagnostics`) speaks in lines, byte spans and plain values;
+//! this module converts at its edge (`convert.rs`).
+//!
+//! - `server.rs`: the `LanguageServer` implementation; dispatch, settings, capabilities.
+//! - `documents.rs`: open documents, their analysis on snapshots, the worker that publishes.
+//! - `text_document.rs`: rope text, `apply_changes`, the lines an edit touched, `LineSource`.
+//! - `convert.rs`: positions in the negotiated encoding, spans to ranges, diagnostics.
+//! - `hover.rs`, `inlay.rs`, `code_action.rs`, `endpoint_preview.rs`: one feature each.
+//! - `words.rs`: where the words of a block are, for the cursor; `gcode_help.rs`: G-function texts.
+//! - `settings.rs`: settings and each document's machine configuration; `ext.rs`: own protocol types.
+//! - `outgoing.rs`, `log.rs`: ordered messages to the client, logging, slow-handler reports.
+
+mod code_action;
+mod convert;
+mod documents;
+mod endpoint_preview;
+mod ext;
+mod gcode_help;
+mod hover;
+mod inlay;
+mod log;
+mod numbers;
+mod outgoing;
+mod server;
+mod settings;
+mod text_document;
+mod words;
+
+pub use convert::PositionEncoding;
+pub use ext::{EndpointPreviewParams, ENDPOINT_PREVIEW_COMMAND};
+pub use text_document::{apply_changes, DocumentText, LineChange, RopeLineChange, RopeLines};
+
+use tokio::io::{AsyncRead, AsyncWrite};
+use tower_lsp_server::{LspService, Server};
+
+/// Serves the protocol on `input` and `output` until the client sends `exit` or closes the input.
+pub async fn serve<I, O>(input: I, output: O)
+where
+    I: AsyncRead + Unpin,
+    O: AsyncWrite,
+{
+    let (service, socket) = LspService::build(server::Backend::new)
+        .custom_method(ext::DOCUMENT_TEXT_REQUEST, server::Backend::document_text)
+        .finish();
+    Server::new(input, output, socket).serve(service).await;
+}
+
+/// Runs the server on the process's stdin and stdout; returns the exit code.
+pub fn serve_stdio() -> u8 {
+    let runtime = match tokio::runtime::Builder::new_multi_thread()
+        .enable_all()
+        .build()
+    {
+        Ok(runtime) => runtime,
+        Err(error) => {
+            eprintln!("sinumerik-lsp: cannot start the language server: {error}");
+            return 2;
+        }
+    };
+    runtime.block_on(serve(tokio::io::stdin(), tokio::io::stdout()));
+    // Analyses still running in the blocking pool are not waited for: the client has gone.
+    runtime.shutdown_timeout(std::time::Duration::from_millis(100));
+    0
+}

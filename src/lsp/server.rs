@@ -1,0 +1,498 @@
+//! The `LanguageServer` implementation: it only dispatches. Notifications that change documents do
+//! their work synchronously before any `.await` (tower-lsp-server runs up to four handlers at once,
+//! so that is what keeps edits in order); requests run their feature on the analysis in the blocking
+//! pool and answer "content modified" when the document changed meanwhile.
+
+use crate::analysis::ProgramKind;
+use crate::lsp::code_action::code_actions;
+use crate::lsp::convert::PositionEncoding;
+use crate::lsp::documents::{lock, Analysed, Documents, OpenDocument, WorkerContext};
+use crate::lsp::endpoint_preview;
+use crate::lsp::ext::{
+    DocumentTextParams, DocumentTextResult, EndpointPreviewParams, ENDPOINT_PREVIEW_COMMAND,
+};
+use crate::lsp::hover::hover;
+use crate::lsp::inlay::inlay_hints;
+use crate::lsp::log::HandlerTimer;
+use crate::lsp::outgoing::{self, Outgoing, OutgoingSender};
+use crate::lsp::settings::{machine_config_for, Settings};
+use crate::lsp::text_document::ChangeError;
+use serde_json::Value;
+use std::path::{Path, PathBuf};
+use std::sync::{Arc, Mutex};
+use std::time::Duration;
+use tokio::sync::mpsc::UnboundedReceiver;
+use tower_lsp_server::jsonrpc::{Error, ErrorCode, Result};
+use tower_lsp_server::ls_types::*;
+use tower_lsp_server::{Client, LanguageServer};
+
+/// How long the server waits for the client's answer to `workspace/configuration`.
+const CONFIGURATION_TIMEOUT: Duration = Duration::from_secs(10);
+
+/// What the client told at initialize.
+#[derive(Debug, Clone, Default)]
+struct ClientInfo {
+    encoding: Option<PositionEncoding>,
+    pulls_configuration: bool,
+    refreshes_inlay_hints: bool,
+    workspace_root: Option<PathBuf>,
+}
+
+/// The server's state, shared with the tasks it spawns.
+pub struct Shared {
+    client: Client,
+    documents: Documents,
+    settings: Mutex<Settings>,
+    info: Mutex<ClientInfo>,
+    outgoing: OutgoingSender,
+    outgoing_receiver: Mutex<Option<UnboundedReceiver<Outgoing>>>,
+}
+
+fn content_modified() -> Error {
+    Error {
+        code: ErrorCode::ServerError(-32801),
+        message: "the document changed while the request was answered".into(),
+        data: None,
+    }
+}
+
+fn not_open(uri: &Uri) -> Error {
+    Error::invalid_params(format!("the document {} is not open", uri.as_str()))
+}
+
+/// The file of a `file:` URI.
+pub fn file_path(uri: &Uri) -> Option<PathBuf> {
+    let is_file = uri.scheme().as_str().eq_ignore_ascii_case("file");
+    if !is_file {
+        return None;
+    }
+    uri.to_file_path().map(|path| path.into_owned())
+}
+
+fn program_kind(uri: &Uri, path: Option<&Path>) -> ProgramKind {
+    let extension = match path {
+        Some(path) => path
+            .extension()
+            .and_then(|extension| extension.to_str())
+            .map(str::to_string),
+        None => uri
+            .path()
+            .as_str()
+            .rsplit_once('.')
+            .map(|(_, extension)| extension.to_string()),
+    };
+    ProgramKind::from_extension(extension.as_deref())
+}
+
+/// The language server: a handle on the shared state.
+pub struct Backend {
+    shared: Arc<Shared>,
+}
+
+impl std::ops::Deref for Backend {
+    type Target = Shared;
+
+    fn deref(&self) -> &Shared {
+        &self.shared
+    }
+}
+
+impl Backend {
+    pub fn new(client: Client) -> Backend {
+        let (sender, receiver) = outgoing::channel();
+        let shared = Shared {
+            client,
+            documents: Documents::default(),
+            settings: Mutex::new(Settings::default()),
+            info: Mutex::new(ClientInfo::default()),
+            outgoing: sender,
+            outgoing_receiver: Mutex::new(Some(receiver)),
+        };
+        Backend {
+            shared: Arc::new(shared),
+        }
+    }
+
+    /// Sends `workspace/configuration` from a task of its own, bounded by a timeout, so no handler
+    /// waits for the client (a client that answers late cannot stall the server's input).
+    fn request_configuration(&self) {
+        let shared = Arc::clone(&self.shared);
+        tokio::spawn(async move {
+            let request = shared.client.configuration(vec![ConfigurationItem {
+                scope_uri: None,
+                section: Some("sinumerik".to_string()),
+            }]);
+            match tokio::time::timeout(CONFIGURATION_TIMEOUT, request).await {
+                Ok(Ok(values)) => {
+                    if let Some(value) = values.first() {
+                        shared.apply_settings(value);
+                    }
+                }
+                Ok(Err(error)) => shared
+                    .outgoing
+                    .log_warning(format!("workspace/configuration failed: {error}")),
+                Err(_) => shared.outgoing.log_warning(
+                    "the client did not answer workspace/configuration in time".to_string(),
+                ),
+            }
+        });
+    }
+}
+
+impl Backend {
+    /// `sinumerik/documentText`.
+    pub async fn document_text(&self, params: DocumentTextParams) -> Result<DocumentTextResult> {
+        let document = self
+            .documents
+            .get(&params.uri)
+            .ok_or_else(|| not_open(&params.uri))?;
+        let (version, text) = document.text_now();
+        Ok(DocumentTextResult { version, text })
+    }
+}
+
+impl Shared {
+    fn encoding(&self) -> PositionEncoding {
+        lock(&self.info).encoding.unwrap_or(PositionEncoding::Utf16)
+    }
+
+    fn context(&self) -> WorkerContext {
+        WorkerContext {
+            outgoing: self.outgoing.clone(),
+            encoding: self.encoding(),
+        }
+    }
+
+    fn warn(&self, message: String) {
+        self.outgoing.log_warning(message);
+    }
+
+    /// The machine configuration of a document; a configuration file that cannot be used is
+    /// reported (the document is still checked, with the defaults).
+    fn machine_config(&self, path: Option<&Path>) -> Arc<crate::config::MachineConfig> {
+        let settings = lock(&self.settings).clone();
+        let root = lock(&self.info).workspace_root.clone();
+        let (config, error) = machine_config_for(path, &settings, root.as_deref());
+        if let Some(error) = error {
+            self.outgoing
+                .log_error(format!("{error}; the defaults of a metric mill are used"));
+            if let Some(uri) = Uri::from_file_path(&error.path) {
+                let line = error.position.map_or(0, |(line, _)| line.saturating_sub(1)) as u32;
+                let column = error
+                    .position
+                    .map_or(0, |(_, column)| column.saturating_sub(1))
+                    as u32;
+                self.outgoing.send(Outgoing::Diagnostics {
+                    uri,
+                    version: None,
+                    diagnostics: vec![Diagnostic {
+                        range: Range::new(
+                            Position::new(line, column),
+                            Position::new(line, column + 1),
+                        ),
+                        severity: Some(DiagnosticSeverity::ERROR),
+                        source: Some("sinumerik".to_string()),
+                        message: error.to_string(),
+                        ..Diagnostic::default()
+                    }],
+                });
+            }
+        }
+        config
+    }
+
+    /// Applies new settings: documents whose configuration changed are analysed again.
+    fn apply_settings(&self, value: &Value) {
+        let (old, new) = {
+            let mut settings = lock(&self.settings);
+            let old = settings.clone();
+            if let Err(message) = settings.apply(value) {
+                self.warn(format!("settings: {message}"));
+            }
+            (old, settings.clone())
+        };
+        if old.config_file != new.config_file {
+            let context = self.context();
+            for document in self.documents.all() {
+                let config = self.machine_config(document.path.as_deref());
+                document.set_config(config, &context);
+            }
+        }
+        if old.inlay_hints != new.inlay_hints && lock(&self.info).refreshes_inlay_hints {
+            let client = self.client.clone();
+            tokio::spawn(async move {
+                let _ = client.inlay_hint_refresh().await;
+            });
+        }
+    }
+
+    /// The open document, the revision it had when the request came, and a job that answers the
+    /// request on the up-to-date analysis in the blocking pool.
+    async fn on_analysis<T: Send + 'static>(
+        &self,
+        uri: &Uri,
+        job: impl FnOnce(&Analysed) -> T + Send + 'static,
+    ) -> Result<T> {
+        let document = self.documents.get(uri).ok_or_else(|| not_open(uri))?;
+        let revision = document.revision();
+        let answer = tokio::task::spawn_blocking(move || {
+            let slot = document.catch_up();
+            match slot.as_ref() {
+                Some(analysed) if analysed.revision == revision => Ok(job(analysed)),
+                _ => Err(content_modified()),
+            }
+        })
+        .await;
+        match answer {
+            Ok(result) => result,
+            Err(join_error) => {
+                self.outgoing
+                    .log_error(format!("a request failed: {join_error}"));
+                Err(Error::internal_error())
+            }
+        }
+    }
+}
+
+impl LanguageServer for Backend {
+    async fn initialize(&self, params: InitializeParams) -> Result<InitializeResult> {
+        let _timer = HandlerTimer::new("initialize", &self.outgoing);
+        let encoding = PositionEncoding::negotiate(
+            params
+                .capabilities
+                .general
+                .as_ref()
+                .and_then(|general| general.position_encodings.as_deref()),
+        );
+        let workspace = params.capabilities.workspace.as_ref();
+        #[allow(deprecated)]
+        let root_uri = params.root_uri.clone();
+        let workspace_root = params
+            .workspace_folders
+            .as_ref()
+            .and_then(|folders| folders.first())
+            .map(|folder| folder.uri.clone())
+            .or(root_uri)
+            .as_ref()
+            .and_then(file_path);
+        *lock(&self.info) = ClientInfo {
+            encoding: Some(encoding),
+            pulls_configuration: workspace
+                .and_then(|workspace| workspace.configuration)
+                .unwrap_or(false),
+            refreshes_inlay_hints: workspace
+                .and_then(|workspace| workspace.inlay_hint.as_ref())
+                .and_then(|inlay| inlay.refresh_support)
+                .unwrap_or(false),
+            workspace_root,
+        };
+        if let Some(options) = &params.initialization_options {
+            if let Err(message) = lock(&self.settings).apply(options) {
+                self.warn(format!("initializationOptions: {message}"));
+            }
+        }
+        if let Some(receiver) = lock(&self.outgoing_receiver).take() {
+            tokio::spawn(outgoing::forward(self.client.clone(), receiver));
+        }
+        Ok(InitializeResult {
+            capabilities: ServerCapabilities {
+                position_encoding: Some(encoding.kind()),
+                text_document_sync: Some(TextDocumentSyncCapability::Options(
+                    TextDocumentSyncOptions {
+                        open_close: Some(true),
+                        change: Some(TextDocumentSyncKind::INCREMENTAL),
+                        ..TextDocumentSyncOptions::default()
+                    },
+                )),
+                hover_provider: Some(HoverProviderCapability::Simple(true)),
+                code_action_provider: Some(CodeActionProviderCapability::Options(
+                    CodeActionOptions {
+                        code_action_kinds: Some(vec![CodeActionKind::QUICKFIX]),
+                        ..CodeActionOptions::default()
+                    },
+                )),
+                inlay_hint_provider: Some(OneOf::Left(true)),
+                execute_command_provider: Some(ExecuteCommandOptions {
+                    commands: vec![ENDPOINT_PREVIEW_COMMAND.to_string()],
+                    ..ExecuteCommandOptions::default()
+                }),
+                ..ServerCapabilities::default()
+            },
+            server_info: Some(ServerInfo {
+                name: "sinumerik-lsp".to_string(),
+                version: Some(env!("CARGO_PKG_VERSION").to_string()),
+            }),
+            ..InitializeResult::default()
+        })
+    }
+
+    async fn initialized(&self, _: InitializedParams) {
+        if lock(&self.info).pulls_configuration {
+            self.request_configuration();
+        }
+    }
+
+    async fn shutdown(&self) -> Result<()> {
+        Ok(())
+    }
+
+    async fn did_open(&self, params: DidOpenTextDocumentParams) {
+        let _timer = HandlerTimer::new("textDocument/didOpen", &self.outgoing);
+        let item = params.text_document;
+        let path = file_path(&item.uri);
+        let kind = program_kind(&item.uri, path.as_deref());
+        let config = self.machine_config(path.as_deref());
+        let document = Arc::new(OpenDocument::new(
+            item.uri.clone(),
+            path,
+            kind,
+            &item.text,
+            item.version,
+            config,
+        ));
+        let context = self.context();
+        if let Some(replaced) = self.documents.insert(Arc::clone(&document)) {
+            self.warn(format!(
+                "{} was opened again without being closed; the new text replaces the old",
+                item.uri.as_str()
+            ));
+            replaced.close(&context);
+        }
+        document.start(&context);
+    }
+
+    async fn did_change(&self, params: DidChangeTextDocumentParams) {
+        let _timer = HandlerTimer::new("textDocument/didChange", &self.outgoing);
+        let uri = params.text_document.uri;
+        let Some(document) = self.documents.get(&uri) else {
+            self.warn(format!(
+                "an edit of {}, which is not open, is ignored",
+                uri.as_str()
+            ));
+            return;
+        };
+        let context = self.context();
+        match document.change(
+            &params.content_changes,
+            params.text_document.version,
+            &context,
+        ) {
+            Ok(()) => {}
+            Err(error @ ChangeError::StaleVersion { .. }) => {
+                self.warn(format!("{}: {error}", uri.as_str()));
+            }
+            Err(error @ ChangeError::ReversedRange { .. }) => {
+                self.outgoing.log_error(format!(
+                    "{}: {error}; the document is out of step with the editor and is dropped until it is opened again",
+                    uri.as_str()
+                ));
+                if let Some(document) = self.documents.remove(&uri) {
+                    document.close(&context);
+                }
+            }
+        }
+    }
+
+    async fn did_close(&self, params: DidCloseTextDocumentParams) {
+        let uri = params.text_document.uri;
+        match self.documents.remove(&uri) {
+            Some(document) => document.close(&self.context()),
+            None => self.warn(format!("{} was closed but was not open", uri.as_str())),
+        }
+    }
+
+    async fn did_change_configuration(&self, params: DidChangeConfigurationParams) {
+        let has_settings = match &params.settings {
+            Value::Null => false,
+            Value::Object(map) => !map.is_empty(),
+            _ => true,
+        };
+        if has_settings {
+            self.apply_settings(&params.settings);
+        } else if lock(&self.info).pulls_configuration {
+            // The "pull" style: the notification only says that something changed.
+            self.request_configuration();
+        }
+    }
+
+    async fn hover(&self, params: HoverParams) -> Result<Option<Hover>> {
+        let _timer = HandlerTimer::new("textDocument/hover", &self.outgoing);
+        let position = params.text_document_position_params.position;
+        let encoding = self.encoding();
+        self.on_analysis(
+            &params.text_document_position_params.text_document.uri,
+            move |analysed| hover(analysed, position, encoding),
+        )
+        .await
+    }
+
+    async fn inlay_hint(&self, params: InlayHintParams) -> Result<Option<Vec<InlayHint>>> {
+        let _timer = HandlerTimer::new("textDocument/inlayHint", &self.outgoing);
+        let mode = lock(&self.settings).inlay_hints;
+        let encoding = self.encoding();
+        let range = params.range;
+        self.on_analysis(&params.text_document.uri, move |analysed| {
+            Some(inlay_hints(analysed, range, mode, encoding))
+        })
+        .await
+    }
+
+    async fn code_action(&self, params: CodeActionParams) -> Result<Option<CodeActionResponse>> {
+        let _timer = HandlerTimer::new("textDocument/codeAction", &self.outgoing);
+        let encoding = self.encoding();
+        let uri = params.text_document.uri.clone();
+        let range = params.range;
+        self.on_analysis(&params.text_document.uri, move |analysed| {
+            Some(code_actions(analysed, &uri, range, encoding))
+        })
+        .await
+    }
+
+    async fn execute_command(&self, params: ExecuteCommandParams) -> Result<Option<Value>> {
+        let _timer = HandlerTimer::new("workspace/executeCommand", &self.outgoing);
+        if params.command != ENDPOINT_PREVIEW_COMMAND {
+            return Err(Error::invalid_params(format!(
+                "unknown command {}",
+                params.command
+            )));
+        }
+        let [argument] = params.arguments.as_slice() else {
+            return Err(Error::invalid_params(format!(
+                "{ENDPOINT_PREVIEW_COMMAND} takes one argument {{\"uri\", \"startLine\"?, \"endLine\"?}}"
+            )));
+        };
+        let preview: EndpointPreviewParams =
+            serde_json::from_value(argument.clone()).map_err(|error| {
+                Error::invalid_params(format!("{ENDPOINT_PREVIEW_COMMAND}: {error}"))
+            })?;
+        let lines = endpoint_preview::LineSelection {
+            start: preview.start_line,
+            end: preview.end_line,
+        };
+        let label = file_path(&preview.uri)
+            .map(|path| path.display().to_string())
+            .unwrap_or_else(|| preview.uri.as_str().to_string());
+        if self.documents.get(&preview.uri).is_some() {
+            let result = self
+                .on_analysis(&preview.uri, move |analysed| {
+                    endpoint_preview::preview_open(analysed, &label, lines)
+                })
+                .await?;
+            return result.map(Some).map_err(Error::invalid_params);
+        }
+        let path = file_path(&preview.uri).ok_or_else(|| {
+            Error::invalid_params(format!(
+                "{} is neither open nor a file: URI",
+                preview.uri.as_str()
+            ))
+        })?;
+        let config = self.machine_config(Some(&path));
+        let kind = program_kind(&preview.uri, Some(&path));
+        let result = tokio::task::spawn_blocking(move || {
+            endpoint_preview::preview_file(&path, &label, config, kind, lines)
+        })
+        .await
+        .map_err(|_| Error::internal_error())?;
+        result.map(Some).map_err(Error::invalid_params)
+    }
+}

@@ -1,0 +1,125 @@
+//! The server's settings (from `initializationOptions`, `workspace/configuration` and
+//! `workspace/didChangeConfiguration`) and the machine configuration of each document
+//! (`sinumerik.toml` from the document's folder upward, or the file the settings name).
+
+use crate::config::{discover_config_file, load_config_file, ConfigError, MachineConfig};
+use serde::Deserialize;
+use serde_json::Value;
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
+
+/// Which moving blocks get an inlay hint with their resolved end point.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Deserialize)]
+#[serde(rename_all = "camelCase")]
+pub enum InlayHintMode {
+    Off,
+    /// Only blocks whose end point is not plain to read from their words (the default).
+    #[default]
+    NotPlain,
+    All,
+}
+
+/// Every setting the server reads. Unknown keys are ignored (clients send their whole section).
+#[derive(Debug, Clone, Default, PartialEq, Eq)]
+pub struct Settings {
+    pub inlay_hints: InlayHintMode,
+    /// One `sinumerik.toml` for every document instead of the nearest one (like `check --config`).
+    pub config_file: Option<PathBuf>,
+}
+
+impl Settings {
+    /// Applies the settings in `value`, either the section itself or an object holding it under
+    /// `sinumerik`. Returns a message for a value that could not be read; the other keys still apply.
+    pub fn apply(&mut self, value: &Value) -> Result<(), String> {
+        let section = value.get("sinumerik").unwrap_or(value);
+        if section.is_null() {
+            return Ok(());
+        }
+        let Value::Object(map) = section else {
+            return Err(format!("settings must be an object, not {section}"));
+        };
+        let mut problems = Vec::new();
+        for (key, value) in map {
+            match key.as_str() {
+                "inlayHints" => match serde_json::from_value::<InlayHintMode>(value.clone()) {
+                    Ok(mode) => self.inlay_hints = mode,
+                    Err(error) => problems.push(format!("setting `inlayHints`: {error}")),
+                },
+                "configFile" => match value {
+                    Value::Null => self.config_file = None,
+                    Value::String(path) if path.is_empty() => self.config_file = None,
+                    Value::String(path) => self.config_file = Some(PathBuf::from(path)),
+                    other => problems.push(format!(
+                        "setting `configFile`: expected a path or null, not {other}"
+                    )),
+                },
+                // Clients send their whole section; keys of other versions are not an error.
+                _ => {}
+            }
+        }
+        if problems.is_empty() {
+            Ok(())
+        } else {
+            Err(problems.join("; "))
+        }
+    }
+}
+
+/// The machine configuration for a document at `path` (`None` for a document that is not a file).
+/// A configuration file that cannot be used gives the defaults and the error, which the caller
+/// reports: the document is still checked.
+pub fn machine_config_for(
+    path: Option<&Path>,
+    settings: &Settings,
+    workspace_root: Option<&Path>,
+) -> (Arc<MachineConfig>, Option<ConfigError>) {
+    let config_path = match &settings.config_file {
+        Some(config_file) if config_file.is_relative() => Some(
+            workspace_root
+                .map(|root| root.join(config_file))
+                .unwrap_or_else(|| config_file.clone()),
+        ),
+        Some(config_file) => Some(config_file.clone()),
+        None => path.and_then(Path::parent).and_then(discover_config_file),
+    };
+    match config_path.map(|config_path| load_config_file(&config_path)) {
+        None => (Arc::new(MachineConfig::default()), None),
+        Some(Ok(config)) => (Arc::new(config), None),
+        Some(Err(error)) => (Arc::new(MachineConfig::default()), Some(error)),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use serde_json::json;
+
+    #[test]
+    fn settings_apply_flat_or_under_the_section() {
+        let mut settings = Settings::default();
+        assert_eq!(settings.inlay_hints, InlayHintMode::NotPlain);
+        settings
+            .apply(&json!({"sinumerik": {"inlayHints": "all"}}))
+            .unwrap();
+        assert_eq!(settings.inlay_hints, InlayHintMode::All);
+        settings
+            .apply(&json!({"inlayHints": "off", "configFile": "m.toml"}))
+            .unwrap();
+        assert_eq!(settings.inlay_hints, InlayHintMode::Off);
+        assert_eq!(settings.config_file, Some(PathBuf::from("m.toml")));
+        settings.apply(&json!({"configFile": null})).unwrap();
+        assert_eq!(settings.config_file, None);
+    }
+
+    #[test]
+    fn a_bad_value_is_reported_and_the_rest_applies() {
+        let mut settings = Settings::default();
+        let error = settings
+            .apply(&json!({"inlayHints": "sometimes", "configFile": "a.toml", "other": 1}))
+            .unwrap_err();
+        assert!(error.contains("inlayHints"), "{error}");
+        assert_eq!(settings.inlay_hints, InlayHintMode::NotPlain);
+        assert_eq!(settings.config_file, Some(PathBuf::from("a.toml")));
+        assert!(settings.apply(&json!(42)).is_err());
+    }
+}
