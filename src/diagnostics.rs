@@ -203,7 +203,7 @@ codes! {
     UnbalancedParentheses = "S130", Error, "Parentheses that are not balanced.";
     UnbalancedBrackets = "S131", Error, "Square brackets that are not balanced.";
     UnterminatedString = "S132", Error, "A string without its closing `\"` on the same line (strings have no escapes).";
-    InvalidNumber = "S133", Error, "A malformed number or numeric literal.";
+    InvalidNumber = "S133", Error, "A malformed number or numeric literal, or one too large for the control (beyond about 1.8EX308).";
     ParenthesisComment = "S134", Error, "Text in parentheses used as a comment; only `;` starts a comment in Siemens mode.";
     SameGroupTwice = "S140", Error, "Two G functions of the same group in one block (alarm 12060).";
     SyntaxDefiningConflict = "S141", Error, "More than one syntax-defining G function (groups 1, 2, 3) in one block (alarm 12070).";

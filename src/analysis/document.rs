@@ -672,12 +672,9 @@ pub fn summarize(config: &MachineConfig, state: &ModalState, flow_uncertain: boo
         .enumerate()
         .filter(|(index, _)| state.touched[*index])
         .map(|(index, axis)| {
+            let transverse = axis.kind == crate::config::AxisKind::Transverse;
             let value = state.positions[index].and_then(|value| {
-                if axis.kind == crate::config::AxisKind::Transverse {
-                    shows_diameter.map(|diameter| if diameter { value * 2.0 } else { value })
-                } else {
-                    Some(value)
-                }
+                crate::analysis::state::shown_value(transverse, shows_diameter, value)
             });
             (axis.name.clone(), value)
         })

@@ -352,6 +352,62 @@ impl<'a> Engine<'a> {
     /// left to [`Engine::describe_last_move`], so that callers that need only diagnostics pay nothing
     /// for it.
     pub fn step(&mut self, line: &str, block: &Block, diagnostics: &mut Vec<Diagnostic>) -> bool {
+        let moved = self.step_block(line, block, diagnostics);
+        self.forget_non_finite();
+        moved
+    }
+
+    /// Values that overflowed (`X1EX308` twice under G91, a frame scaled beyond the range of a double)
+    /// are unknown, never infinity or NaN: a number shown must be one the control could reach.
+    fn forget_non_finite(&mut self) {
+        let finite = |value: &Option<f64>| value.filter(|value| value.is_finite());
+        let state = &mut self.state;
+        for values in [
+            &mut state.positions,
+            &mut state.programmed,
+            &mut state.machine,
+            &mut state.offset,
+        ] {
+            for value in values.iter_mut() {
+                *value = finite(value);
+            }
+        }
+        if state
+            .fine_translation
+            .is_some_and(|translation| !translation.iter().all(|value| value.is_finite()))
+        {
+            state.fine_translation = None;
+        }
+        self.state.feed = finite(&self.state.feed);
+        self.state.polar_angle = finite(&self.state.polar_angle);
+        self.state.polar_radius = finite(&self.state.polar_radius);
+        for pole in &mut self.state.poles {
+            if let crate::analysis::state::Pole::At(first, second) = *pole {
+                if !(first.is_finite() && second.is_finite()) {
+                    *pole = crate::analysis::state::Pole::Unknown;
+                }
+            }
+        }
+        if let Some(frame) = self.state.frame {
+            let numbers = frame.matrix.iter().flatten().chain(&frame.translation);
+            if !numbers.into_iter().all(|value| value.is_finite()) {
+                self.state.frame = None;
+            }
+        }
+        if let Some(circle) = self.last_arc {
+            let numbers = [
+                circle.centre.0,
+                circle.centre.1,
+                circle.radius,
+                circle.sweep,
+            ];
+            if !numbers.iter().all(|value| value.is_finite()) {
+                self.last_arc = None;
+            }
+        }
+    }
+
+    fn step_block(&mut self, line: &str, block: &Block, diagnostics: &mut Vec<Diagnostic>) -> bool {
         self.last_arc = None;
         if block.is_header {
             return false;
@@ -1441,10 +1497,8 @@ impl<'a> Engine<'a> {
         let shows_diameter = self.state.shows_diameter();
         // How the program shows a value; unknown for a transverse axis while the diameter mode is.
         let display = |index: usize, value: f64| -> Option<f64> {
-            if self.config.axes[index].kind != AxisKind::Transverse {
-                return Some(value);
-            }
-            shows_diameter.map(|diameter| if diameter { value * 2.0 } else { value })
+            let transverse = self.config.axes[index].kind == AxisKind::Transverse;
+            crate::analysis::state::shown_value(transverse, shows_diameter, value)
         };
         let mut start = Vec::new();
         let mut end = Vec::new();

@@ -152,12 +152,8 @@ pub fn resolve_words(
                 }),
             };
         let shown_as_diameter = transverse && shows_diameter == Some(true);
-        let display = |value: f64| -> Option<f64> {
-            if !transverse {
-                return Some(value);
-            }
-            shows_diameter.map(|diameter| if diameter { value * 2.0 } else { value })
-        };
+        let display =
+            |value: f64| crate::analysis::state::shown_value(transverse, shows_diameter, value);
         let start = before.positions[index].and_then(display);
         let end = after.positions[index].and_then(display);
         let machine_value = machine.and_then(|values| {

@@ -296,6 +296,18 @@ impl ModalState {
     }
 }
 
+/// How the program shows an axis value kept internally (a radius on a transverse axis): doubled
+/// under diameter display (`shows_diameter`, from [`ModalState::shows_diameter`]), unknown while the
+/// display mode is unknown, and unknown when doubling overflows the range of a double.
+pub fn shown_value(transverse: bool, shows_diameter: Option<bool>, value: f64) -> Option<f64> {
+    if !transverse {
+        return Some(value);
+    }
+    shows_diameter
+        .map(|diameter| if diameter { value * 2.0 } else { value })
+        .filter(|shown| shown.is_finite())
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

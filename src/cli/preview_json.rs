@@ -9,6 +9,11 @@ use std::sync::Arc;
 
 /// Rounds away floating-point noise (1e-9 mm) so that `58.0` does not print as `57.99999999999999`.
 pub(crate) fn round(value: f64) -> f64 {
+    // Beyond about 1e299 the scaling below overflows to infinity (written as `null`); such values
+    // have no digits after the point to round anyway.
+    if !(value * 1e9).is_finite() {
+        return value;
+    }
     let rounded = (value * 1e9).round() / 1e9;
     if rounded == 0.0 {
         0.0

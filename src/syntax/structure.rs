@@ -24,6 +24,10 @@ pub struct StructureChecker {
     open: Vec<Open>,
     /// Whether the nesting bound was reported already (once per program).
     too_deep_reported: bool,
+    /// Structures opened beyond the bound, which are not followed: the next closing keywords close
+    /// them without a check, so that 100,000 nested IFs with their ENDIFs do not give 99,744 findings
+    /// of "ENDIF without IF" (found with the hostile-file tests).
+    untracked: usize,
 }
 
 fn name(keyword: StructureKeyword) -> &'static str {
@@ -78,6 +82,7 @@ impl StructureChecker {
                             format!("control structures are nested more than {MAX_OPEN_STRUCTURES} levels deep; deeper levels are not checked"),
                         ));
                     }
+                    self.untracked += 1;
                     continue;
                 }
                 self.open.push(Open {
@@ -86,6 +91,14 @@ impl StructureChecker {
                     span: *span,
                     has_else: false,
                 });
+                continue;
+            }
+            if self.untracked > 0 && keyword != StructureKeyword::Case {
+                // Inside the levels that are not followed: ELSE belongs to one of them, and a closing
+                // keyword closes the innermost.
+                if keyword != StructureKeyword::Else {
+                    self.untracked -= 1;
+                }
                 continue;
             }
             match keyword {
