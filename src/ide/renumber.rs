@@ -19,7 +19,8 @@ pub enum NumberingMode {
     Keep,
     /// Every block with a statement or label gets a number (not the `PROC` line or a `%` header).
     All,
-    /// Only blocks that a jump targets keep a (new) number; every other number is removed.
+    /// Only blocks that a jump targets (and a numbered `PROC` line) keep a (new) number; every other
+    /// number is removed.
     Drop,
 }
 
@@ -68,6 +69,9 @@ struct LineLayout {
     /// Where a new number is inserted: after the skip marker and blanks, else at the first character.
     insert_at: usize,
     numberable: bool,
+    /// The `PROC` header: its number is never added or removed, because whether a `PROC` line
+    /// starts with a number decides for the analysis whether the file is a subprogram.
+    is_procedure: bool,
 }
 
 /// The edits that renumber a program.
@@ -103,7 +107,7 @@ pub fn renumber(source: &dyn LineSource, config: &MachineConfig, options: Renumb
         let gets_number = match options.mode {
             NumberingMode::Keep => layout.number.is_some(),
             NumberingMode::All => layout.number.is_some() || layout.numberable,
-            NumberingMode::Drop => layout.number.is_some() && targeted.contains(&line_index),
+            NumberingMode::Drop => layout.number.is_some() && (targeted.contains(&line_index) || layout.is_procedure),
         };
         match (gets_number, layout.number) {
             (true, number) => {
@@ -180,6 +184,7 @@ fn line_layouts(source: &dyn LineSource, config: &MachineConfig, table: &SymbolT
             number: block.number.map(|number| number.span),
             insert_at,
             numberable: !block.is_header && !is_procedure && (!block.statements.is_empty() || block.label.is_some()),
+            is_procedure,
         });
         true
     });
