@@ -50,38 +50,12 @@ pub fn signature_help(index: &WorkspaceIndex, document: &str, line_text: &str, b
             _ => {}
         }
     }
-    let (name, active_parameter) = open.pop()?;
-    let name = name?;
-    let (parameters, documentation): (Vec<(String, Option<String>)>, Option<String>) =
-        if let Some((_, procedure)) = index.procedure(&name) {
-            (
-                procedure
-                    .parameters
-                    .iter()
-                    .map(|parameter| {
-                        let reference = if parameter.by_reference { "VAR " } else { "" };
-                        let dimensions = parameter.dimensions.clone().unwrap_or_default();
-                        (format!("{reference}{} {}{dimensions}", parameter.type_name, parameter.name).trim().to_string(), None)
-                    })
-                    .collect(),
-                procedure.documentation.clone(),
-            )
-        } else if let Some(declaration) = index
-            .document(document)
-            .and_then(|indexed| indexed.symbols.externs.iter().find(|declaration| declaration.name == name).cloned())
-        {
-            (declaration.parameter_types?.into_iter().map(|written| (written, None)).collect(), None)
-        } else {
-            let cycle = cycle(&name)?;
-            (
-                cycle
-                    .parameters
-                    .iter()
-                    .map(|parameter| (parameter.to_string(), parameter_meaning(parameter).map(str::to_string)))
-                    .collect(),
-                Some(cycle.summary.to_string()),
-            )
-        };
+    // The innermost call with a known signature: inside `CYCLE82(10, SIN(30|))` that is CYCLE82.
+    let (name, active_parameter, (parameters, documentation)) = open
+        .into_iter()
+        .rev()
+        .filter_map(|(name, commas)| name.map(|name| (name, commas)))
+        .find_map(|(name, commas)| known_signature(index, document, &name).map(|signature| (name, commas, signature)))?;
     let mut label = format!("{name}(");
     let mut ranges = Vec::new();
     let mut parameter_documentation = Vec::new();
@@ -95,4 +69,36 @@ pub fn signature_help(index: &WorkspaceIndex, document: &str, line_text: &str, b
     }
     label.push(')');
     Some(SignatureHelp { label, parameters: ranges, parameter_documentation, active_parameter, documentation })
+}
+
+/// The parameters (text, meaning) and documentation of a called name: a `PROC` of the workspace, an
+/// `EXTERN` declaration of the document, or a standard cycle.
+type Signature = (Vec<(String, Option<String>)>, Option<String>);
+
+fn known_signature(index: &WorkspaceIndex, document: &str, name: &str) -> Option<Signature> {
+    if let Some((_, procedure)) = index.procedure(name) {
+        let parameters = procedure
+            .parameters
+            .iter()
+            .map(|parameter| {
+                let reference = if parameter.by_reference { "VAR " } else { "" };
+                let dimensions = parameter.dimensions.clone().unwrap_or_default();
+                (format!("{reference}{} {}{dimensions}", parameter.type_name, parameter.name).trim().to_string(), None)
+            })
+            .collect();
+        return Some((parameters, procedure.documentation.clone()));
+    }
+    let declaration = index
+        .document(document)
+        .and_then(|indexed| indexed.symbols.externs.iter().find(|declaration| declaration.name == name));
+    if let Some(types) = declaration.and_then(|declaration| declaration.parameter_types.clone()) {
+        return Some((types.into_iter().map(|written| (written, None)).collect(), None));
+    }
+    let cycle = cycle(name)?;
+    let parameters = cycle
+        .parameters
+        .iter()
+        .map(|parameter| (parameter.to_string(), parameter_meaning(parameter).map(str::to_string)))
+        .collect();
+    Some((parameters, Some(cycle.summary.to_string())))
 }
