@@ -16,7 +16,10 @@ fn fmt_rewrites_in_place_and_check_reports_without_writing() {
 
     let (code, stdout, _) = run_in(&scratch, &["fmt", "--check", "."]);
     assert_eq!(code, 1, "{stdout}");
-    assert!(stdout.contains("would be reformatted: ./part.mpf"), "{stdout}");
+    assert!(
+        stdout.contains("would be reformatted: ./part.mpf"),
+        "{stdout}"
+    );
     assert!(!stdout.contains("clean.mpf"), "{stdout}");
     assert_eq!(scratch.read("part.mpf"), original, "--check must not write");
 
@@ -28,7 +31,10 @@ fn fmt_rewrites_in_place_and_check_reports_without_writing() {
     );
     let (code, stdout, _) = run_in(&scratch, &["fmt", "--check", "part.mpf"]);
     assert_eq!(code, 0, "formatted files pass the check: {stdout}");
-    assert!(stdout.contains("0 files would be reformatted, 1 file unchanged"), "{stdout}");
+    assert!(
+        stdout.contains("0 files would be reformatted, 1 file unchanged"),
+        "{stdout}"
+    );
 }
 
 #[test]
@@ -53,7 +59,11 @@ fn fmt_refuses_invalid_utf8_after_a_byte_order_mark() {
     let (code, _, stderr) = run_in(&scratch, &["fmt", "broken.mpf"]);
     assert_eq!(code, 2, "{stderr}");
     assert!(stderr.contains("byte-order mark"), "{stderr}");
-    assert_eq!(scratch.read("broken.mpf"), bytes, "a refused file is not touched");
+    assert_eq!(
+        scratch.read("broken.mpf"),
+        bytes,
+        "a refused file is not touched"
+    );
 }
 
 #[test]

@@ -12,7 +12,10 @@ const PROGRAM: &str = "N5 G0 X0 ; N5 in a comment stays\nNAME:\nN7 MSG(\"N7\")\n
 fn renumber_keeps_numbered_blocks_and_moves_jumps_with_their_block() {
     let scratch = Scratch::new("renumber-keep");
     scratch.write("p.mpf", PROGRAM.as_bytes());
-    let (code, stdout, stderr) = run_in(&scratch, &["renumber", "--start", "100", "--step", "5", "p.mpf"]);
+    let (code, stdout, stderr) = run_in(
+        &scratch,
+        &["renumber", "--start", "100", "--step", "5", "p.mpf"],
+    );
     assert_eq!(code, 0, "{stdout}{stderr}");
     // GOTOB N7 reaches the N7 above it (now N105), GOTOF N5 the N5 below it (now N120).
     assert_eq!(

@@ -13,7 +13,9 @@ use sinumerik_lsp::config::MachineConfig;
 use sinumerik_lsp::ide::completion::completion;
 use sinumerik_lsp::ide::cross_file_diagnostics::cross_file_diagnostics;
 use sinumerik_lsp::ide::navigation::{definition, references, rename};
-use sinumerik_lsp::ide::outline::{document_highlights, document_symbols, folding_ranges, OutlineItem};
+use sinumerik_lsp::ide::outline::{
+    document_highlights, document_symbols, folding_ranges, OutlineItem,
+};
 use sinumerik_lsp::ide::semantic_tokens::semantic_tokens;
 use sinumerik_lsp::ide::signature_help::signature_help;
 use sinumerik_lsp::ide::{apply_edits, Location, SymbolTable, WorkspaceIndex};
@@ -56,18 +58,33 @@ impl Fixture {
             if let Some(position) = text.find("$0") {
                 text.replace_range(position..position + 2, "");
                 let line = text[..position].matches('\n').count();
-                let line_start = text[..position].rfind('\n').map_or(0, |newline| newline + 1);
+                let line_start = text[..position]
+                    .rfind('\n')
+                    .map_or(0, |newline| newline + 1);
                 cursor = Some((name.clone(), line, position - line_start));
             }
         }
-        let (cursor_file, cursor_line, cursor_byte) = cursor.unwrap_or_else(|| (files[0].0.clone(), 0, 0));
-        Fixture { files, cursor_file, cursor_line, cursor_byte, complete, rename_to }
+        let (cursor_file, cursor_line, cursor_byte) =
+            cursor.unwrap_or_else(|| (files[0].0.clone(), 0, 0));
+        Fixture {
+            files,
+            cursor_file,
+            cursor_line,
+            cursor_byte,
+            complete,
+            rename_to,
+        }
     }
 
     fn index(&self, config: &MachineConfig) -> WorkspaceIndex {
         let mut index = WorkspaceIndex::new();
         for (name, text) in &self.files {
-            index.update(Arc::from(name.as_str()), name, &TextLines::new(text), config);
+            index.update(
+                Arc::from(name.as_str()),
+                name,
+                &TextLines::new(text),
+                config,
+            );
         }
         index.set_complete(self.complete);
         index
@@ -87,18 +104,29 @@ impl Fixture {
 }
 
 fn line_of(text: &str, line: usize) -> &str {
-    line_ranges(text).nth(line).map_or("", |(start, end)| &text[start..end])
+    line_ranges(text)
+        .nth(line)
+        .map_or("", |(start, end)| &text[start..end])
 }
 
 fn show_location(fixture: &Fixture, location: &Location) -> String {
     let line = line_of(fixture.text_of(&location.document), location.line);
-    let text = line.get(location.span.start()..location.span.end()).unwrap_or("");
-    format!("{}:{} {:?} {text:?}", location.document, location.line + 1, location.span)
+    let text = line
+        .get(location.span.start()..location.span.end())
+        .unwrap_or("");
+    format!(
+        "{}:{} {:?} {text:?}",
+        location.document,
+        location.line + 1,
+        location.span
+    )
 }
 
 /// Runs `render` on every fixture of `fixtures/ide/<feature>` and compares with the expectations.
 fn check_feature(feature: &str, render: impl Fn(&Fixture, &MachineConfig) -> String) {
-    let folder = Path::new(env!("CARGO_MANIFEST_DIR")).join("fixtures/ide").join(feature);
+    let folder = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("fixtures/ide")
+        .join(feature);
     let mut paths: Vec<PathBuf> = std::fs::read_dir(&folder)
         .unwrap_or_else(|error| panic!("{}: {error}", folder.display()))
         .map(|entry| entry.unwrap().path())
@@ -124,7 +152,9 @@ fn check_feature(feature: &str, render: impl Fn(&Fixture, &MachineConfig) -> Str
                 failures,
                 "{}: expected\n{}\n--- got\n{actual}",
                 path.display(),
-                expected.as_deref().unwrap_or("(no .expected file; run with UPDATE_EXPECT=1)")
+                expected
+                    .as_deref()
+                    .unwrap_or("(no .expected file; run with UPDATE_EXPECT=1)")
             );
         }
     }
@@ -140,7 +170,13 @@ fn symbols() {
             let _ = writeln!(out, "label {} @{}", label.name, label.line + 1);
         }
         for number in &table.block_numbers {
-            let _ = writeln!(out, "block {}{} @{}", if number.main { ":" } else { "N" }, number.value, number.line + 1);
+            let _ = writeln!(
+                out,
+                "block {}{} @{}",
+                if number.main { ":" } else { "N" },
+                number.value,
+                number.line + 1
+            );
         }
         for variable in &table.variables {
             let _ = writeln!(
@@ -154,10 +190,22 @@ fn symbols() {
             );
         }
         for parameter in &table.r_parameters {
-            let _ = writeln!(out, "r {:?} {} @{}", parameter.number, if parameter.write { "write" } else { "read" }, parameter.line + 1);
+            let _ = writeln!(
+                out,
+                "r {:?} {} @{}",
+                parameter.number,
+                if parameter.write { "write" } else { "read" },
+                parameter.line + 1
+            );
         }
         if let Some(procedure) = &table.procedure {
-            let _ = writeln!(out, "proc {} @{} doc={:?}", procedure.name, procedure.line + 1, procedure.documentation);
+            let _ = writeln!(
+                out,
+                "proc {} @{} doc={:?}",
+                procedure.name,
+                procedure.line + 1,
+                procedure.documentation
+            );
             for parameter in &procedure.parameters {
                 let _ = writeln!(
                     out,
@@ -170,16 +218,42 @@ fn symbols() {
             }
         }
         for definition in &table.macros {
-            let _ = writeln!(out, "define {} AS {} @{}", definition.name, definition.body, definition.line + 1);
+            let _ = writeln!(
+                out,
+                "define {} AS {} @{}",
+                definition.name,
+                definition.body,
+                definition.line + 1
+            );
         }
         for declaration in &table.externs {
-            let _ = writeln!(out, "extern {} {:?} @{}", declaration.name, declaration.parameter_types, declaration.line + 1);
+            let _ = writeln!(
+                out,
+                "extern {} {:?} @{}",
+                declaration.name,
+                declaration.parameter_types,
+                declaration.line + 1
+            );
         }
         for call in &table.calls {
-            let _ = writeln!(out, "call {} {:?} args={:?} @{}", call.name, call.style, call.argument_count, call.line + 1);
+            let _ = writeln!(
+                out,
+                "call {} {:?} args={:?} @{}",
+                call.name,
+                call.style,
+                call.argument_count,
+                call.line + 1
+            );
         }
         for jump in &table.jumps {
-            let _ = writeln!(out, "jump {:?} {:?} case={} @{}", jump.kind, jump.destination, jump.in_case, jump.line + 1);
+            let _ = writeln!(
+                out,
+                "jump {:?} {:?} case={} @{}",
+                jump.kind,
+                jump.destination,
+                jump.in_case,
+                jump.line + 1
+            );
         }
         for change in &table.tool_changes {
             let _ = writeln!(out, "tool {} @{}", change.text, change.line + 1);
@@ -188,9 +262,19 @@ fn symbols() {
             let _ = writeln!(out, "section {:?} @{}", section.title, section.line + 1);
         }
         for name_use in &table.name_uses {
-            let _ = writeln!(out, "name {} {} @{}", name_use.name, if name_use.write { "write" } else { "read" }, name_use.line + 1);
+            let _ = writeln!(
+                out,
+                "name {} {} @{}",
+                name_use.name,
+                if name_use.write { "write" } else { "read" },
+                name_use.line + 1
+            );
         }
-        let _ = writeln!(out, "first executable @{:?}", table.first_executable_line.map(|line| line + 1));
+        let _ = writeln!(
+            out,
+            "first executable @{:?}",
+            table.first_executable_line.map(|line| line + 1)
+        );
         out
     });
 }
@@ -199,7 +283,12 @@ fn symbols() {
 fn goto_definition() {
     check_feature("definition", |fixture, config| {
         let index = fixture.index(config);
-        let found = definition(&index, &fixture.cursor_file, fixture.cursor_line, fixture.cursor_byte);
+        let found = definition(
+            &index,
+            &fixture.cursor_file,
+            fixture.cursor_line,
+            fixture.cursor_byte,
+        );
         let mut out = String::new();
         for location in &found {
             let _ = writeln!(out, "{}", show_location(fixture, location));
@@ -215,7 +304,13 @@ fn goto_definition() {
 fn find_references() {
     check_feature("references", |fixture, config| {
         let index = fixture.index(config);
-        let found = references(&index, &fixture.cursor_file, fixture.cursor_line, fixture.cursor_byte, true);
+        let found = references(
+            &index,
+            &fixture.cursor_file,
+            fixture.cursor_line,
+            fixture.cursor_byte,
+            true,
+        );
         let mut out = String::new();
         for location in &found {
             let _ = writeln!(out, "{}", show_location(fixture, location));
@@ -231,13 +326,27 @@ fn find_references() {
 fn rename_symbols() {
     check_feature("rename", |fixture, config| {
         let index = fixture.index(config);
-        let new_name = fixture.rename_to.as_deref().expect("rename fixtures need `;;; RENAME NAME`");
-        match rename(&index, config, &fixture.cursor_file, fixture.cursor_line, fixture.cursor_byte, new_name) {
+        let new_name = fixture
+            .rename_to
+            .as_deref()
+            .expect("rename fixtures need `;;; RENAME NAME`");
+        match rename(
+            &index,
+            config,
+            &fixture.cursor_file,
+            fixture.cursor_line,
+            fixture.cursor_byte,
+            new_name,
+        ) {
             Err(error) => format!("{error:?}\n"),
             Ok(edit) => {
                 let mut out = String::new();
                 for (document, edits) in &edit.changes {
-                    let _ = write!(out, "--- {document}\n{}", apply_edits(fixture.text_of(document), edits));
+                    let _ = write!(
+                        out,
+                        "--- {document}\n{}",
+                        apply_edits(fixture.text_of(document), edits)
+                    );
                 }
                 for (document, name) in &edit.renamed_programs {
                     let _ = writeln!(out, "rename file {document} -> program {name}");
@@ -252,10 +361,24 @@ fn rename_symbols() {
 fn completions() {
     check_feature("completion", |fixture, config| {
         let index = fixture.index(config);
-        let items = completion(&index, &fixture.cursor_file, fixture.cursor_line_text(), fixture.cursor_line, fixture.cursor_byte, config);
+        let items = completion(
+            &index,
+            &fixture.cursor_file,
+            fixture.cursor_line_text(),
+            fixture.cursor_line,
+            fixture.cursor_byte,
+            config,
+        );
         let mut out = String::new();
         for item in &items {
-            let _ = writeln!(out, "{:?} {} | {} | {}", item.kind, item.label, item.detail, item.snippet.as_deref().unwrap_or(""));
+            let _ = writeln!(
+                out,
+                "{:?} {} | {} | {}",
+                item.kind,
+                item.label,
+                item.detail,
+                item.snippet.as_deref().unwrap_or("")
+            );
         }
         if items.is_empty() {
             out.push_str("(none)\n");
@@ -268,17 +391,29 @@ fn completions() {
 fn signature_helps() {
     check_feature("signature", |fixture, config| {
         let index = fixture.index(config);
-        match signature_help(&index, &fixture.cursor_file, fixture.cursor_line_text(), fixture.cursor_byte) {
+        match signature_help(
+            &index,
+            &fixture.cursor_file,
+            fixture.cursor_line_text(),
+            fixture.cursor_byte,
+        ) {
             None => "(none)\n".to_string(),
             Some(help) => {
-                let (start, end) = help.parameters.get(help.active_parameter).copied().unwrap_or((0, 0));
+                let (start, end) = help
+                    .parameters
+                    .get(help.active_parameter)
+                    .copied()
+                    .unwrap_or((0, 0));
                 format!(
                     "{}\nactive {} {:?}\ndoc {:?}\nparameter doc {:?}\n",
                     help.label,
                     help.active_parameter,
                     &help.label[start..end],
                     help.documentation,
-                    help.parameter_documentation.get(help.active_parameter).cloned().flatten()
+                    help.parameter_documentation
+                        .get(help.active_parameter)
+                        .cloned()
+                        .flatten()
                 )
             }
         }
@@ -308,7 +443,13 @@ fn outline_and_folding() {
         let mut out = String::new();
         render_outline(&document_symbols(&table), 0, &mut out);
         for range in folding_ranges(&table) {
-            let _ = writeln!(out, "fold {:?} {}-{}", range.kind, range.start_line + 1, range.end_line + 1);
+            let _ = writeln!(
+                out,
+                "fold {:?} {}-{}",
+                range.kind,
+                range.start_line + 1,
+                range.end_line + 1
+            );
         }
         out
     });
@@ -319,7 +460,12 @@ fn highlights() {
     check_feature("highlights", |fixture, config| {
         let index = fixture.index(config);
         let mut out = String::new();
-        for (line, span, role) in document_highlights(&index, &fixture.cursor_file, fixture.cursor_line, fixture.cursor_byte) {
+        for (line, span, role) in document_highlights(
+            &index,
+            &fixture.cursor_file,
+            fixture.cursor_line,
+            fixture.cursor_byte,
+        ) {
             let text = &line_of(fixture.cursor_text(), line)[span.start()..span.end()];
             let _ = writeln!(out, "{} {text:?} {role:?}", line + 1);
         }
@@ -339,7 +485,15 @@ fn semantic_token_kinds() {
         let mut out = String::new();
         for token in semantic_tokens(&lines, &table, config, 0..usize::MAX) {
             let line = line_of(text, token.line);
-            let _ = writeln!(out, "{}:{} {:?} {:?} m{}", token.line + 1, token.start, &line[token.start..token.start + token.length], token.kind, token.modifiers);
+            let _ = writeln!(
+                out,
+                "{}:{} {:?} {:?} m{}",
+                token.line + 1,
+                token.start,
+                &line[token.start..token.start + token.length],
+                token.kind,
+                token.modifiers
+            );
         }
         out
     });
@@ -353,7 +507,12 @@ fn workspace_diagnostics() {
         for (name, text) in &fixture.files {
             for item in cross_file_diagnostics(&index, name, config) {
                 let line = line_of(text, item.line);
-                let fix = item.diagnostic.fix.as_ref().map(|fix| format!(" [fix: {}]", fix.title)).unwrap_or_default();
+                let fix = item
+                    .diagnostic
+                    .fix
+                    .as_ref()
+                    .map(|fix| format!(" [fix: {}]", fix.title))
+                    .unwrap_or_default();
                 let _ = writeln!(
                     out,
                     "{name}:{} {} {} {:?}: {}{fix}",
@@ -380,7 +539,11 @@ fn semantic_tokens_of_a_line_range_equal_those_of_the_whole_document() {
     let table = SymbolTable::of_text(text, &config);
     let all = semantic_tokens(&lines, &table, &config, 0..4);
     let middle = semantic_tokens(&lines, &table, &config, 1..3);
-    let expected: Vec<_> = all.iter().filter(|token| (1..3).contains(&token.line)).copied().collect();
+    let expected: Vec<_> = all
+        .iter()
+        .filter(|token| (1..3).contains(&token.line))
+        .copied()
+        .collect();
     assert!(!middle.is_empty());
     assert_eq!(middle, expected);
 }

@@ -217,7 +217,11 @@ fn parse_preview(parser: &mut lexopt::Parser) -> Result<Command, UsageError> {
 }
 
 fn parse_fmt(parser: &mut lexopt::Parser) -> Result<Command, UsageError> {
-    let mut options = FmtOptions { check: false, config_path: None, paths: Vec::new() };
+    let mut options = FmtOptions {
+        check: false,
+        config_path: None,
+        paths: Vec::new(),
+    };
     while let Some(arg) = parser.next()? {
         match arg {
             Short('h') | Long("help") => return Ok(Command::Help),
@@ -228,7 +232,9 @@ fn parse_fmt(parser: &mut lexopt::Parser) -> Result<Command, UsageError> {
         }
     }
     if options.paths.is_empty() {
-        return Err(UsageError("`fmt` needs at least one file or folder".to_string()));
+        return Err(UsageError(
+            "`fmt` needs at least one file or folder".to_string(),
+        ));
     }
     Ok(Command::Fmt(options))
 }
@@ -254,7 +260,16 @@ fn parse_renumber(parser: &mut lexopt::Parser) -> Result<Command, UsageError> {
                     .parse()
                     .ok()
                     .filter(|number| flag == "start" || *number > 0)
-                    .ok_or_else(|| UsageError(format!("--{flag} needs a {} whole number, not {value:?}", if flag == "start" { "non-negative" } else { "positive" })))?;
+                    .ok_or_else(|| {
+                        UsageError(format!(
+                            "--{flag} needs a {} whole number, not {value:?}",
+                            if flag == "start" {
+                                "non-negative"
+                            } else {
+                                "positive"
+                            }
+                        ))
+                    })?;
                 if flag == "start" {
                     options.renumber.start = number;
                 } else {
@@ -274,10 +289,14 @@ fn parse_renumber(parser: &mut lexopt::Parser) -> Result<Command, UsageError> {
         }
     }
     if mode_flags > 1 {
-        return Err(UsageError("choose one of --keep, --all and --drop".to_string()));
+        return Err(UsageError(
+            "choose one of --keep, --all and --drop".to_string(),
+        ));
     }
     if options.paths.is_empty() {
-        return Err(UsageError("`renumber` needs at least one file or folder".to_string()));
+        return Err(UsageError(
+            "`renumber` needs at least one file or folder".to_string(),
+        ));
     }
     Ok(Command::Renumber(options))
 }
@@ -370,7 +389,11 @@ mod tests {
         use crate::ide::renumber::NumberingMode;
         assert_eq!(
             parse(&["fmt", "--check", "a.mpf"]),
-            Ok(Command::Fmt(FmtOptions { check: true, config_path: None, paths: vec![PathBuf::from("a.mpf")] }))
+            Ok(Command::Fmt(FmtOptions {
+                check: true,
+                config_path: None,
+                paths: vec![PathBuf::from("a.mpf")]
+            }))
         );
         match parse(&["renumber", "--start", "100", "--step", "5", "--drop", "d"]) {
             Ok(Command::Renumber(options)) => {
@@ -380,8 +403,14 @@ mod tests {
             }
             other => panic!("{other:?}"),
         }
-        assert!(parse(&["renumber", "--step", "0", "a"]).unwrap_err().0.contains("positive"));
-        assert!(parse(&["renumber", "--keep", "--drop", "a"]).unwrap_err().0.contains("one of"));
+        assert!(parse(&["renumber", "--step", "0", "a"])
+            .unwrap_err()
+            .0
+            .contains("positive"));
+        assert!(parse(&["renumber", "--keep", "--drop", "a"])
+            .unwrap_err()
+            .0
+            .contains("one of"));
         assert!(parse(&["fmt"]).is_err());
     }
 

@@ -215,7 +215,10 @@ pub(super) struct ConfigCache {
 }
 
 impl ConfigCache {
-    pub(super) fn new(fixed: Option<MachineConfig>, extensions_override: Option<Vec<String>>) -> ConfigCache {
+    pub(super) fn new(
+        fixed: Option<MachineConfig>,
+        extensions_override: Option<Vec<String>>,
+    ) -> ConfigCache {
         ConfigCache {
             fixed: fixed.map(|config| Rc::new(with_extensions(config, &extensions_override))),
             default: Rc::new(with_extensions(

@@ -107,7 +107,10 @@ pub fn run_with_output(
         Command::LanguageServer => {
             // `run` starts the server on the process's stdio before this; with other streams (tests)
             // there is nothing to serve on.
-            let _ = write!(stderr, "sinumerik-lsp: the language server needs stdin and stdout.\n\n{USAGE}");
+            let _ = write!(
+                stderr,
+                "sinumerik-lsp: the language server needs stdin and stdout.\n\n{USAGE}"
+            );
             return EXIT_TROUBLE;
         }
         Command::Help => write!(stdout, "{}\n\n{USAGE}", version_line()).map(|()| EXIT_OK),

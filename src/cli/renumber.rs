@@ -6,7 +6,11 @@ use super::rewrite::{run_rewrite, RewriteRun};
 use crate::ide::renumber::renumber_text;
 use std::io::{self, Write};
 
-pub(crate) fn run_renumber(options: &RenumberCliOptions, stdout: &mut dyn Write, stderr: &mut dyn Write) -> io::Result<u8> {
+pub(crate) fn run_renumber(
+    options: &RenumberCliOptions,
+    stdout: &mut dyn Write,
+    stderr: &mut dyn Write,
+) -> io::Result<u8> {
     let run = RewriteRun {
         paths: &options.paths,
         config_path: options.config_path.as_deref(),
@@ -15,7 +19,9 @@ pub(crate) fn run_renumber(options: &RenumberCliOptions, stdout: &mut dyn Write,
     };
     run_rewrite(
         &run,
-        &|text, config| renumber_text(text, config, options.renumber).map_err(|error| error.to_string()),
+        &|text, config| {
+            renumber_text(text, config, options.renumber).map_err(|error| error.to_string())
+        },
         stdout,
         stderr,
     )

@@ -7,7 +7,9 @@
 //! be written back exactly (invalid UTF-8 after a byte-order mark) is refused with a message.
 
 use super::check::{collect_program_files, ConfigCache, ProblemReporter};
-use super::source_file::{decode_source, decode_windows_1252, SourceEncoding, MAX_SOURCE_FILE_SIZE};
+use super::source_file::{
+    decode_source, decode_windows_1252, SourceEncoding, MAX_SOURCE_FILE_SIZE,
+};
 use super::{EXIT_ERRORS_FOUND, EXIT_OK, EXIT_TROUBLE};
 use crate::config::{load_config_file, MachineConfig};
 use std::collections::HashMap;
@@ -33,7 +35,10 @@ pub(super) fn run_rewrite(
     stdout: &mut dyn Write,
     stderr: &mut dyn Write,
 ) -> io::Result<u8> {
-    let mut problems = ProblemReporter { stderr, any_problem: false };
+    let mut problems = ProblemReporter {
+        stderr,
+        any_problem: false,
+    };
     let fixed_config = match run.config_path {
         None => None,
         Some(config_path) => match load_config_file(config_path) {
@@ -63,7 +68,10 @@ pub(super) fn run_rewrite(
         let new_text = match rewrite(&original.text, &config) {
             Ok(new_text) => new_text,
             Err(message) => {
-                problems.report(format_args!("{}: {message}; the file was not changed", path.display()));
+                problems.report(format_args!(
+                    "{}: {message}; the file was not changed",
+                    path.display()
+                ));
                 continue;
             }
         };
@@ -79,12 +87,24 @@ pub(super) fn run_rewrite(
         let result = encode(&new_text, &original).and_then(|bytes| write_in_place(path, &bytes));
         match result {
             Ok(()) => writeln!(stdout, "{}: {}", run.done_verb, path.display())?,
-            Err(message) => problems.report(format_args!("{}: {message}; the file was not changed", path.display())),
+            Err(message) => problems.report(format_args!(
+                "{}: {message}; the file was not changed",
+                path.display()
+            )),
         }
     }
     let files_word = |count: usize| if count == 1 { "file" } else { "files" };
-    let summary = if run.check { format!("would be {}", run.done_verb) } else { run.done_verb.to_string() };
-    writeln!(stdout, "{changed} {} {summary}, {unchanged} {} unchanged", files_word(changed), files_word(unchanged))?;
+    let summary = if run.check {
+        format!("would be {}", run.done_verb)
+    } else {
+        run.done_verb.to_string()
+    };
+    writeln!(
+        stdout,
+        "{changed} {} {summary}, {unchanged} {} unchanged",
+        files_word(changed),
+        files_word(unchanged)
+    )?;
     Ok(if problems.any_problem {
         EXIT_TROUBLE
     } else if run.check && changed > 0 {
@@ -102,20 +122,32 @@ struct OriginalFile {
 }
 
 fn read_file(path: &Path) -> Result<OriginalFile, String> {
-    let size = std::fs::metadata(path).map_err(|error| error.to_string())?.len();
+    let size = std::fs::metadata(path)
+        .map_err(|error| error.to_string())?
+        .len();
     if size > MAX_SOURCE_FILE_SIZE {
-        return Err(format!("the file is too large to be a part program ({} MiB)", size.div_ceil(1024 * 1024)));
+        return Err(format!(
+            "the file is too large to be a part program ({} MiB)",
+            size.div_ceil(1024 * 1024)
+        ));
     }
     let bytes = std::fs::read(path).map_err(|error| error.to_string())?;
     let decoded = decode_source(&bytes);
-    let original = OriginalFile { text: decoded.text, encoding: decoded.encoding, had_bom: bytes.starts_with(UTF8_BOM) };
+    let original = OriginalFile {
+        text: decoded.text,
+        encoding: decoded.encoding,
+        had_bom: bytes.starts_with(UTF8_BOM),
+    };
     // Refuse up front what could not be written back exactly.
     if original.encoding == SourceEncoding::Utf8Lossy {
         return Err("the file has a UTF-8 byte-order mark but is not valid UTF-8, so it cannot be rewritten without changing bytes; it was not changed".to_string());
     }
     match encode(&original.text, &original) {
         Ok(round_trip) if round_trip == bytes => Ok(original),
-        _ => Err("the file's encoding cannot be reproduced byte for byte, so it is not rewritten".to_string()),
+        _ => Err(
+            "the file's encoding cannot be reproduced byte for byte, so it is not rewritten"
+                .to_string(),
+        ),
     }
 }
 
@@ -134,14 +166,17 @@ fn encode(text: &str, original: &OriginalFile) -> Result<Vec<u8>, String> {
             let table = windows_1252_encoder();
             text.chars()
                 .map(|character| {
-                    table
-                        .get(&character)
-                        .copied()
-                        .ok_or_else(|| format!("the character {character:?} has no byte in the file's 8-bit encoding"))
+                    table.get(&character).copied().ok_or_else(|| {
+                        format!(
+                            "the character {character:?} has no byte in the file's 8-bit encoding"
+                        )
+                    })
                 })
                 .collect()
         }
-        SourceEncoding::Utf8Lossy => Err("the file is not valid UTF-8 after its byte-order mark".to_string()),
+        SourceEncoding::Utf8Lossy => {
+            Err("the file is not valid UTF-8 after its byte-order mark".to_string())
+        }
     }
 }
 
@@ -150,14 +185,20 @@ fn windows_1252_encoder() -> &'static HashMap<char, u8> {
     static TABLE: std::sync::OnceLock<HashMap<char, u8>> = std::sync::OnceLock::new();
     TABLE.get_or_init(|| {
         let all_bytes: Vec<u8> = (0..=255).collect();
-        decode_windows_1252(&all_bytes).chars().zip(all_bytes).collect()
+        decode_windows_1252(&all_bytes)
+            .chars()
+            .zip(all_bytes)
+            .collect()
     })
 }
 
 /// Writes a temporary file beside the target and renames it over the target, so that a failed write
 /// never leaves half a program behind.
 fn write_in_place(path: &Path, bytes: &[u8]) -> Result<(), String> {
-    let file_name = path.file_name().map(|name| name.to_string_lossy().into_owned()).unwrap_or_default();
+    let file_name = path
+        .file_name()
+        .map(|name| name.to_string_lossy().into_owned())
+        .unwrap_or_default();
     let temporary = path.with_file_name(format!(".{file_name}.sinumerik-lsp.tmp"));
     std::fs::write(&temporary, bytes).map_err(|error| format!("cannot write: {error}"))?;
     if let Ok(metadata) = std::fs::metadata(path) {

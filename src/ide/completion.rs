@@ -39,8 +39,18 @@ pub struct CompletionItem {
 }
 
 impl CompletionItem {
-    fn plain(label: impl Into<String>, kind: CompletionKind, detail: impl Into<String>) -> CompletionItem {
-        CompletionItem { label: label.into(), kind, detail: detail.into(), documentation: None, snippet: None }
+    fn plain(
+        label: impl Into<String>,
+        kind: CompletionKind,
+        detail: impl Into<String>,
+    ) -> CompletionItem {
+        CompletionItem {
+            label: label.into(),
+            kind,
+            detail: detail.into(),
+            documentation: None,
+            snippet: None,
+        }
     }
 }
 
@@ -59,7 +69,10 @@ pub fn completion(
     let mut lexemes = Vec::new();
     lex_line_into(before, &mut lexemes);
     if lexemes.last().is_some_and(|lexeme| {
-        matches!(lexeme.token, Some(Token::Comment) | Some(Token::UnterminatedString))
+        matches!(
+            lexeme.token,
+            Some(Token::Comment) | Some(Token::UnterminatedString)
+        )
     }) {
         return Vec::new();
     }
@@ -75,7 +88,9 @@ pub fn completion(
         .unwrap_or("")
         .to_ascii_uppercase();
     let matches = |label: &str| label.to_ascii_uppercase().starts_with(&prefix);
-    let table = index.document(document).map(|indexed| indexed.symbols.clone());
+    let table = index
+        .document(document)
+        .map(|indexed| indexed.symbols.clone());
 
     if let Some(direction) = jump_direction(&previous_word) {
         let mut items = Vec::new();
@@ -86,8 +101,17 @@ pub fn completion(
                     Direction::Backward => label.line < line,
                     Direction::Both => true,
                 };
-                if reachable && matches(&label.name) && !items.iter().any(|item: &CompletionItem| item.label == label.name) {
-                    items.push(CompletionItem::plain(label.name.clone(), CompletionKind::Label, format!("label, line {}", label.line + 1)));
+                if reachable
+                    && matches(&label.name)
+                    && !items
+                        .iter()
+                        .any(|item: &CompletionItem| item.label == label.name)
+                {
+                    items.push(CompletionItem::plain(
+                        label.name.clone(),
+                        CompletionKind::Label,
+                        format!("label, line {}", label.line + 1),
+                    ));
                 }
             }
         }
@@ -108,55 +132,125 @@ pub fn completion(
             // Cycles come below, with their snippets.
             EntryKind::Cycle => continue,
         };
-        items.push(CompletionItem { label: entry.name, kind, detail: entry.detail, documentation: Some(entry.summary), snippet: None });
+        items.push(CompletionItem {
+            label: entry.name,
+            kind,
+            detail: entry.detail,
+            documentation: Some(entry.summary),
+            snippet: None,
+        });
     }
     for axis in &config.axes {
         if matches(&axis.name) {
-            items.push(CompletionItem::plain(axis.name.clone(), CompletionKind::Axis, format!("{} axis", axis.kind.as_str())));
+            items.push(CompletionItem::plain(
+                axis.name.clone(),
+                CompletionKind::Axis,
+                format!("{} axis", axis.kind.as_str()),
+            ));
         }
     }
     if let Some(table) = &table {
         if let Some(procedure) = &table.procedure {
-            for parameter in procedure.parameters.iter().filter(|parameter| matches(&parameter.name)) {
+            for parameter in procedure
+                .parameters
+                .iter()
+                .filter(|parameter| matches(&parameter.name))
+            {
                 let reference = if parameter.by_reference { "VAR " } else { "" };
-                items.push(CompletionItem::plain(parameter.name.clone(), CompletionKind::Parameter, format!("{reference}{} parameter", parameter.type_name)));
+                items.push(CompletionItem::plain(
+                    parameter.name.clone(),
+                    CompletionKind::Parameter,
+                    format!("{reference}{} parameter", parameter.type_name),
+                ));
             }
         }
-        for variable in table.variables.iter().filter(|variable| matches(&variable.name)) {
+        for variable in table
+            .variables
+            .iter()
+            .filter(|variable| matches(&variable.name))
+        {
             let dimensions = variable.dimensions.clone().unwrap_or_default();
-            items.push(CompletionItem::plain(variable.name.clone(), CompletionKind::Variable, format!("DEF {}{dimensions}", variable.type_name)));
+            items.push(CompletionItem::plain(
+                variable.name.clone(),
+                CompletionKind::Variable,
+                format!("DEF {}{dimensions}", variable.type_name),
+            ));
         }
-        for definition in table.macros.iter().filter(|definition| matches(&definition.name)) {
-            items.push(CompletionItem::plain(definition.name.clone(), CompletionKind::Macro, format!("DEFINE AS {}", definition.body)));
+        for definition in table
+            .macros
+            .iter()
+            .filter(|definition| matches(&definition.name))
+        {
+            items.push(CompletionItem::plain(
+                definition.name.clone(),
+                CompletionKind::Macro,
+                format!("DEFINE AS {}", definition.body),
+            ));
         }
     }
     for indexed in index.documents() {
         let symbols = &indexed.symbols;
         if indexed.kind == FileKind::Definitions {
-            for variable in symbols.variables.iter().filter(|variable| matches(&variable.name)) {
-                items.push(CompletionItem::plain(variable.name.clone(), CompletionKind::Variable, format!("global DEF {} ({})", variable.type_name, indexed.id)));
+            for variable in symbols
+                .variables
+                .iter()
+                .filter(|variable| matches(&variable.name))
+            {
+                items.push(CompletionItem::plain(
+                    variable.name.clone(),
+                    CompletionKind::Variable,
+                    format!("global DEF {} ({})", variable.type_name, indexed.id),
+                ));
             }
-            for definition in symbols.macros.iter().filter(|definition| matches(&definition.name)) {
-                items.push(CompletionItem::plain(definition.name.clone(), CompletionKind::Macro, format!("DEFINE AS {}", definition.body)));
+            for definition in symbols
+                .macros
+                .iter()
+                .filter(|definition| matches(&definition.name))
+            {
+                items.push(CompletionItem::plain(
+                    definition.name.clone(),
+                    CompletionKind::Macro,
+                    format!("DEFINE AS {}", definition.body),
+                ));
             }
             continue;
         }
-        let name = symbols.procedure.as_ref().map_or(&indexed.program_name, |procedure| &procedure.name);
+        let name = symbols
+            .procedure
+            .as_ref()
+            .map_or(&indexed.program_name, |procedure| &procedure.name);
         if !matches(name) || items.iter().any(|item| &item.label == name) {
             continue;
         }
         let parameters: Vec<String> = symbols
             .procedure
             .as_ref()
-            .map(|procedure| procedure.parameters.iter().map(|parameter| parameter.name.clone()).collect())
+            .map(|procedure| {
+                procedure
+                    .parameters
+                    .iter()
+                    .map(|parameter| parameter.name.clone())
+                    .collect()
+            })
             .unwrap_or_default();
-        let mut item = CompletionItem::plain(name.clone(), CompletionKind::Subprogram, format!("{name}({})", parameters.join(", ")));
+        let mut item = CompletionItem::plain(
+            name.clone(),
+            CompletionKind::Subprogram,
+            format!("{name}({})", parameters.join(", ")),
+        );
         item.snippet = (!parameters.is_empty()).then(|| snippet(name, &parameters));
-        item.documentation = symbols.procedure.as_ref().and_then(|procedure| procedure.documentation.clone());
+        item.documentation = symbols
+            .procedure
+            .as_ref()
+            .and_then(|procedure| procedure.documentation.clone());
         items.push(item);
     }
     for cycle in CYCLES.iter().filter(|cycle| matches(cycle.name)) {
-        let parameters: Vec<String> = cycle.parameters.iter().map(|name| name.to_string()).collect();
+        let parameters: Vec<String> = cycle
+            .parameters
+            .iter()
+            .map(|name| name.to_string())
+            .collect();
         items.push(CompletionItem {
             label: cycle.name.to_string(),
             kind: CompletionKind::Cycle,

@@ -16,7 +16,11 @@ use crate::syntax::ast::JumpKind;
 use std::collections::HashSet;
 
 /// The W3xx findings of one indexed document, with the configured severities, sorted by line.
-pub fn cross_file_diagnostics(index: &WorkspaceIndex, document: &str, config: &MachineConfig) -> Vec<LineDiagnostic> {
+pub fn cross_file_diagnostics(
+    index: &WorkspaceIndex,
+    document: &str,
+    config: &MachineConfig,
+) -> Vec<LineDiagnostic> {
     let Some(indexed) = index.document(document) else {
         return Vec::new();
     };
@@ -43,12 +47,22 @@ fn jump_findings(table: &SymbolTable, out: &mut Vec<LineDiagnostic>) {
     for jump in &table.jumps {
         let (lines, span, shown): (Vec<usize>, Span, String) = match &jump.destination {
             JumpDestination::Label { name, span } => (
-                table.labels.iter().filter(|label| &label.name == name).map(|label| label.line).collect(),
+                table
+                    .labels
+                    .iter()
+                    .filter(|label| &label.name == name)
+                    .map(|label| label.line)
+                    .collect(),
                 *span,
                 format!("label `{name}`"),
             ),
             JumpDestination::BlockNumber { value, span } => (
-                table.block_numbers.iter().filter(|number| number.value == *value).map(|number| number.line).collect(),
+                table
+                    .block_numbers
+                    .iter()
+                    .filter(|number| number.value == *value)
+                    .map(|number| number.line)
+                    .collect(),
                 *span,
                 format!("block number N{value}"),
             ),
@@ -98,7 +112,11 @@ fn definition_order_findings(table: &SymbolTable, out: &mut Vec<LineDiagnostic>)
         return;
     };
     let mut reported_lines = HashSet::new();
-    for variable in table.variables.iter().filter(|variable| variable.line > first_executable) {
+    for variable in table
+        .variables
+        .iter()
+        .filter(|variable| variable.line > first_executable)
+    {
         if reported_lines.insert(variable.line) {
             push(
                 out,
@@ -114,7 +132,11 @@ fn definition_order_findings(table: &SymbolTable, out: &mut Vec<LineDiagnostic>)
             );
         }
     }
-    if let Some(procedure) = table.procedure.as_ref().filter(|procedure| procedure.line > first_executable) {
+    if let Some(procedure) = table
+        .procedure
+        .as_ref()
+        .filter(|procedure| procedure.line > first_executable)
+    {
         push(
             out,
             procedure.line,
@@ -129,10 +151,17 @@ fn definition_order_findings(table: &SymbolTable, out: &mut Vec<LineDiagnostic>)
 
 /// W301, W302, W303: calls of programs the index does not know, and argument counts that do not fit
 /// the `PROC` header (or the `EXTERN` declaration when the header is not indexed).
-fn call_findings(index: &WorkspaceIndex, document: &IndexedDocument, out: &mut Vec<LineDiagnostic>) {
+fn call_findings(
+    index: &WorkspaceIndex,
+    document: &IndexedDocument,
+    out: &mut Vec<LineDiagnostic>,
+) {
     let table = &document.symbols;
     for call in &table.calls {
-        if matches!(resolve_call(index, document, &call.name), Symbol::Macro { .. }) {
+        if matches!(
+            resolve_call(index, document, &call.name),
+            Symbol::Macro { .. }
+        ) {
             continue;
         }
         let procedure = index.procedure(&call.name).map(|(_, procedure)| procedure);
@@ -157,7 +186,13 @@ fn call_findings(index: &WorkspaceIndex, document: &IndexedDocument, out: &mut V
         // (parameter count, by-reference flags) from the header, else from an EXTERN declaration.
         let signature: Option<Vec<bool>> = match procedure {
             Some(procedure) if procedure.has_parameter_list || procedure.parameters.is_empty() => {
-                Some(procedure.parameters.iter().map(|parameter| parameter.by_reference).collect())
+                Some(
+                    procedure
+                        .parameters
+                        .iter()
+                        .map(|parameter| parameter.by_reference)
+                        .collect(),
+                )
             }
             Some(_) => None,
             None => table
@@ -165,7 +200,12 @@ fn call_findings(index: &WorkspaceIndex, document: &IndexedDocument, out: &mut V
                 .iter()
                 .find(|declaration| declaration.name == call.name)
                 .and_then(|declaration| declaration.parameter_types.as_ref())
-                .map(|types| types.iter().map(|written| written.starts_with("VAR ")).collect()),
+                .map(|types| {
+                    types
+                        .iter()
+                        .map(|written| written.starts_with("VAR "))
+                        .collect()
+                }),
         };
         let Some(by_reference) = signature else {
             continue;
@@ -185,7 +225,11 @@ fn call_findings(index: &WorkspaceIndex, document: &IndexedDocument, out: &mut V
                     ),
                 ),
             );
-        } else if let Some(missing) = by_reference.iter().skip(count).position(|reference| *reference) {
+        } else if let Some(missing) = by_reference
+            .iter()
+            .skip(count)
+            .position(|reference| *reference)
+        {
             let parameter_name = procedure
                 .and_then(|procedure| procedure.parameters.get(count + missing))
                 .map(|parameter| format!(" `{}`", parameter.name))
@@ -223,11 +267,15 @@ fn undefined_variable_findings(
     for name_use in &table.name_uses {
         let name = name_use.name.as_str();
         let looks_like_address = name.len() <= 1
-            || (name.as_bytes()[0].is_ascii_alphabetic() && name.as_bytes()[1..].iter().all(u8::is_ascii_digit));
+            || (name.as_bytes()[0].is_ascii_alphabetic()
+                && name.as_bytes()[1..].iter().all(u8::is_ascii_digit));
         if looks_like_address || reported.contains(name) {
             continue;
         }
-        if !matches!(resolve_name(index, document, name), Symbol::Unresolved { .. }) {
+        if !matches!(
+            resolve_name(index, document, name),
+            Symbol::Unresolved { .. }
+        ) {
             continue;
         }
         if reserved_reason(name, config).is_some()

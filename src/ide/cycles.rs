@@ -95,9 +95,11 @@ pub fn cycle(name: &str) -> Option<&'static Cycle> {
 pub fn is_control_cycle(name: &str) -> bool {
     cycle(name).is_some()
         || matches!(name, "POCKET3" | "POCKET4" | "SLOT1" | "SLOT2" | "LONGHOLE")
-        || ["CYCLE", "CUST_", "GROUP_", "_", "S_", "E_", "F_", "CCS_", "CC_"]
-            .iter()
-            .any(|prefix| name.starts_with(prefix))
+        || [
+            "CYCLE", "CUST_", "GROUP_", "_", "S_", "E_", "F_", "CCS_", "CC_",
+        ]
+        .iter()
+        .any(|prefix| name.starts_with(prefix))
 }
 
 #[cfg(test)]
@@ -106,11 +108,17 @@ mod tests {
 
     #[test]
     fn cycles_are_found_with_their_parameters() {
-        assert_eq!(cycle("CYCLE81").unwrap().parameters, ["RTP", "RFP", "SDIS", "DP", "DPR"]);
+        assert_eq!(
+            cycle("CYCLE81").unwrap().parameters,
+            ["RTP", "RFP", "SDIS", "DP", "DPR"]
+        );
         assert_eq!(cycle("CYCLE82").unwrap().parameters.len(), 6);
         assert!(cycle("CYCLE1234").is_none());
         assert!(is_control_cycle("CYCLE1234") && is_control_cycle("CUST_800"));
         assert!(!is_control_cycle("PART2"));
-        assert_eq!(parameter_meaning("RTP"), Some("retraction plane (absolute)"));
+        assert_eq!(
+            parameter_meaning("RTP"),
+            Some("retraction plane (absolute)")
+        );
     }
 }

@@ -28,12 +28,20 @@ impl Default for FormatOptions {
 }
 
 /// The edits that format a document: one whole-line replacement per line that changes.
-pub fn format(source: &dyn LineSource, config: &MachineConfig, options: FormatOptions) -> Vec<LineEdit> {
+pub fn format(
+    source: &dyn LineSource,
+    config: &MachineConfig,
+    options: FormatOptions,
+) -> Vec<LineEdit> {
     let mut formatter = LineFormatter::new(source, config, options);
     let mut edits = Vec::new();
     source.for_each_line(0, &mut |line_index, line| {
         if let Some(new_text) = formatter.format_line(line) {
-            edits.push(LineEdit { line: line_index, span: Span::new(0, line.len()), new_text });
+            edits.push(LineEdit {
+                line: line_index,
+                span: Span::new(0, line.len()),
+                new_text,
+            });
         }
         true
     });
@@ -42,7 +50,11 @@ pub fn format(source: &dyn LineSource, config: &MachineConfig, options: FormatOp
 
 /// Formats a whole text (line ends kept).
 pub fn format_text(text: &str, config: &MachineConfig, options: FormatOptions) -> String {
-    let edits = format(&crate::analysis::document::TextLines::new(text), config, options);
+    let edits = format(
+        &crate::analysis::document::TextLines::new(text),
+        config,
+        options,
+    );
     crate::ide::apply_edits(text, &edits)
 }
 
@@ -60,7 +72,11 @@ struct LineFormatter {
 }
 
 impl LineFormatter {
-    fn new(source: &dyn LineSource, config: &MachineConfig, options: FormatOptions) -> LineFormatter {
+    fn new(
+        source: &dyn LineSource,
+        config: &MachineConfig,
+        options: FormatOptions,
+    ) -> LineFormatter {
         let mut context = SyntaxContext::new(config);
         source.for_each_line(0, &mut |_, line| {
             if let Some(name) = crate::syntax::lines_containing(line, b"DEFINE")
@@ -86,7 +102,8 @@ impl LineFormatter {
 
     /// The formatted line, or `None` when it stays as it is.
     fn format_line(&mut self, line: &str) -> Option<String> {
-        self.parser.parse(line, &self.context, &mut self.block, &mut self.diagnostics);
+        self.parser
+            .parse(line, &self.context, &mut self.block, &mut self.diagnostics);
         if self.block.is_header {
             return None;
         }
@@ -97,13 +114,23 @@ impl LineFormatter {
             return None;
         }
         // The guard: the new line must lex and parse exactly like the old one.
-        self.parser.parse(&formatted, &self.context, &mut self.new_block, &mut self.new_diagnostics);
+        self.parser.parse(
+            &formatted,
+            &self.context,
+            &mut self.new_block,
+            &mut self.new_diagnostics,
+        );
         lex_line_into(&formatted, &mut self.new_lexemes);
         let same_tokens = self.lexemes.len() == self.new_lexemes.len()
-            && self.lexemes.iter().zip(&self.new_lexemes).all(|(old, new)| {
-                old.token == new.token
-                    && line[old.span.start()..old.span.end()].eq_ignore_ascii_case(&formatted[new.span.start()..new.span.end()])
-            });
+            && self
+                .lexemes
+                .iter()
+                .zip(&self.new_lexemes)
+                .all(|(old, new)| {
+                    old.token == new.token
+                        && line[old.span.start()..old.span.end()]
+                            .eq_ignore_ascii_case(&formatted[new.span.start()..new.span.end()])
+                });
         let same_parse = same_tokens
             && fingerprint(&self.block, &self.diagnostics, &self.lexemes)
                 == fingerprint(&self.new_block, &self.new_diagnostics, &self.new_lexemes);
@@ -124,7 +151,12 @@ fn element_starts(block: &Block) -> Vec<usize> {
     if let Some(label) = block.label {
         starts.push(label.start());
     }
-    starts.extend(block.statements.iter().map(|statement| statement.span().start()));
+    starts.extend(
+        block
+            .statements
+            .iter()
+            .map(|statement| statement.span().start()),
+    );
     starts.sort_unstable();
     starts
 }
@@ -133,11 +165,19 @@ fn element_starts(block: &Block) -> Vec<usize> {
 fn is_literal(token: Option<Token>) -> bool {
     matches!(
         token,
-        None | Some(Token::Comment) | Some(Token::String) | Some(Token::UnterminatedString) | Some(Token::BadQuoted)
+        None | Some(Token::Comment)
+            | Some(Token::String)
+            | Some(Token::UnterminatedString)
+            | Some(Token::BadQuoted)
     )
 }
 
-fn respace(line: &str, lexemes: &[Lexeme], element_starts: &[usize], options: FormatOptions) -> String {
+fn respace(
+    line: &str,
+    lexemes: &[Lexeme],
+    element_starts: &[usize],
+    options: FormatOptions,
+) -> String {
     let Some(first) = lexemes.first() else {
         // Blanks (or nothing) only.
         return String::new();
@@ -157,15 +197,24 @@ fn respace(line: &str, lexemes: &[Lexeme], element_starts: &[usize], options: Fo
                     } else {
                         let column = line[..lexeme.span.start()].chars().count();
                         let current = out.chars().count();
-                        let padding = if column > current { column - current } else { 1 };
+                        let padding = if column > current {
+                            column - current
+                        } else {
+                            1
+                        };
                         out.extend(std::iter::repeat_n(' ', padding));
                     }
                 }
             } else if is_element_start {
                 out.push(' ');
             } else if !gap.is_empty() {
-                let tight = matches!(previous.token, Some(Token::LeftParen) | Some(Token::LeftBracket))
-                    || matches!(lexeme.token, Some(Token::RightParen) | Some(Token::RightBracket) | Some(Token::Comma));
+                let tight = matches!(
+                    previous.token,
+                    Some(Token::LeftParen) | Some(Token::LeftBracket)
+                ) || matches!(
+                    lexeme.token,
+                    Some(Token::RightParen) | Some(Token::RightBracket) | Some(Token::Comma)
+                );
                 if !tight {
                     out.push(' ');
                 }
@@ -194,7 +243,11 @@ fn fingerprint(block: &Block, diagnostics: &[Diagnostic], lexemes: &[Lexeme]) ->
         out.extend(range(span));
     };
     out.push(block.is_header as u64);
-    out.push(block.sync_actions_from.map_or(u64::MAX, |index| index as u64));
+    out.push(
+        block
+            .sync_actions_from
+            .map_or(u64::MAX, |index| index as u64),
+    );
     if let Some((level, span)) = block.skip {
         push_span(&mut out, 1, span);
         out.push(u64::from(level));
@@ -223,13 +276,23 @@ fn fingerprint(block: &Block, diagnostics: &[Diagnostic], lexemes: &[Lexeme]) ->
                     out.push(value.to_bits());
                 }
             }
-            Statement::GCode { code, .. } => out.push(code.index_in_group() as u64 * 100 + code.group() as u64),
-            Statement::Call { name: Some(name), args, .. } => {
+            Statement::GCode { code, .. } => {
+                out.push(code.index_in_group() as u64 * 100 + code.group() as u64)
+            }
+            Statement::Call {
+                name: Some(name),
+                args,
+                ..
+            } => {
                 push_span(&mut out, 61, *name);
                 out.push(args.len() as u64);
             }
-            Statement::Definition { names, .. } => names.iter().for_each(|name| push_span(&mut out, 62, *name)),
-            Statement::ProcedureHeader { parameters, .. } => parameters.iter().for_each(|name| push_span(&mut out, 63, *name)),
+            Statement::Definition { names, .. } => {
+                names.iter().for_each(|name| push_span(&mut out, 62, *name))
+            }
+            Statement::ProcedureHeader { parameters, .. } => parameters
+                .iter()
+                .for_each(|name| push_span(&mut out, 63, *name)),
             _ => {}
         }
     }

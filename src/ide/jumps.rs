@@ -25,13 +25,19 @@ pub fn resolve_jump(kind: JumpKind, from: usize, candidates: &[usize]) -> JumpRe
     let found = match kind {
         JumpKind::Gotof => first_after.or(same_line.then_some(from)),
         JumpKind::Gotob => last_before.or(same_line.then_some(from)),
-        JumpKind::Goto | JumpKind::Gotoc => first_after.or(same_line.then_some(from)).or(last_before),
+        JumpKind::Goto | JumpKind::Gotoc => {
+            first_after.or(same_line.then_some(from)).or(last_before)
+        }
         JumpKind::Gotos => return JumpResolution::Missing,
     };
     match (found, kind) {
         (Some(line), _) => JumpResolution::Found(line),
-        (None, JumpKind::Gotof) => last_before.map_or(JumpResolution::Missing, JumpResolution::WrongDirection),
-        (None, JumpKind::Gotob) => first_after.map_or(JumpResolution::Missing, JumpResolution::WrongDirection),
+        (None, JumpKind::Gotof) => {
+            last_before.map_or(JumpResolution::Missing, JumpResolution::WrongDirection)
+        }
+        (None, JumpKind::Gotob) => {
+            first_after.map_or(JumpResolution::Missing, JumpResolution::WrongDirection)
+        }
         (None, _) => JumpResolution::Missing,
     }
 }
@@ -43,13 +49,37 @@ mod tests {
     #[test]
     fn directions_are_followed() {
         let lines = [2, 8];
-        assert_eq!(resolve_jump(JumpKind::Gotof, 5, &lines), JumpResolution::Found(8));
-        assert_eq!(resolve_jump(JumpKind::Gotob, 5, &lines), JumpResolution::Found(2));
-        assert_eq!(resolve_jump(JumpKind::Gotof, 9, &lines), JumpResolution::WrongDirection(8));
-        assert_eq!(resolve_jump(JumpKind::Gotob, 1, &lines), JumpResolution::WrongDirection(2));
-        assert_eq!(resolve_jump(JumpKind::Goto, 9, &lines), JumpResolution::Found(8));
-        assert_eq!(resolve_jump(JumpKind::Goto, 0, &lines), JumpResolution::Found(2));
-        assert_eq!(resolve_jump(JumpKind::Gotoc, 0, &[]), JumpResolution::Missing);
-        assert_eq!(resolve_jump(JumpKind::Gotof, 8, &lines), JumpResolution::Found(8));
+        assert_eq!(
+            resolve_jump(JumpKind::Gotof, 5, &lines),
+            JumpResolution::Found(8)
+        );
+        assert_eq!(
+            resolve_jump(JumpKind::Gotob, 5, &lines),
+            JumpResolution::Found(2)
+        );
+        assert_eq!(
+            resolve_jump(JumpKind::Gotof, 9, &lines),
+            JumpResolution::WrongDirection(8)
+        );
+        assert_eq!(
+            resolve_jump(JumpKind::Gotob, 1, &lines),
+            JumpResolution::WrongDirection(2)
+        );
+        assert_eq!(
+            resolve_jump(JumpKind::Goto, 9, &lines),
+            JumpResolution::Found(8)
+        );
+        assert_eq!(
+            resolve_jump(JumpKind::Goto, 0, &lines),
+            JumpResolution::Found(2)
+        );
+        assert_eq!(
+            resolve_jump(JumpKind::Gotoc, 0, &[]),
+            JumpResolution::Missing
+        );
+        assert_eq!(
+            resolve_jump(JumpKind::Gotof, 8, &lines),
+            JumpResolution::Found(8)
+        );
     }
 }

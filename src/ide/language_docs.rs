@@ -10,7 +10,10 @@ use crate::syntax::gcodes::{GCode, TABLE};
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum EntryKind {
     /// A G function and its group.
-    GCode { group: u8, modal: bool },
+    GCode {
+        group: u8,
+        modal: bool,
+    },
     Keyword,
     Function,
     Instruction,
@@ -294,7 +297,12 @@ const WORDS: &[(&str, EntryKind, &str)] = &[
 pub fn describe(word: &str) -> Option<LanguageDoc> {
     let upper = word.to_ascii_uppercase();
     if let Some((name, kind, summary)) = WORDS.iter().find(|(name, _, _)| *name == upper) {
-        return Some(LanguageDoc { name: name.to_string(), kind: *kind, summary: summary.to_string(), detail: String::new() });
+        return Some(LanguageDoc {
+            name: name.to_string(),
+            kind: *kind,
+            summary: summary.to_string(),
+            detail: String::new(),
+        });
     }
     if let Some(cycle) = CYCLES.iter().find(|cycle| cycle.name == upper) {
         return Some(LanguageDoc {
@@ -304,7 +312,10 @@ pub fn describe(word: &str) -> Option<LanguageDoc> {
             detail: format!("{}({})", cycle.name, cycle.parameters.join(", ")),
         });
     }
-    let code = match upper.strip_prefix('G').and_then(|digits| digits.parse::<u32>().ok()) {
+    let code = match upper
+        .strip_prefix('G')
+        .and_then(|digits| digits.parse::<u32>().ok())
+    {
         Some(number) => GCode::from_number(number),
         None => GCode::from_name(&upper),
     }?;
@@ -317,14 +328,20 @@ fn gcode_doc(code: GCode) -> LanguageDoc {
     let modal = code.is_modal();
     let summary = match gcode_summary(&name) {
         Some(summary) => summary.to_string(),
-        None if group == 8 => "Settable work offset from the offset table of the machine.".to_string(),
+        None if group == 8 => {
+            "Settable work offset from the offset table of the machine.".to_string()
+        }
         None => format!("A G function of group {group} ({}).", group_name(group)),
     };
     LanguageDoc {
         name,
         kind: EntryKind::GCode { group, modal },
         summary,
-        detail: format!("group {group} ({}), {}", group_name(group), if modal { "modal" } else { "non-modal" }),
+        detail: format!(
+            "group {group} ({}), {}",
+            group_name(group),
+            if modal { "modal" } else { "non-modal" }
+        ),
     }
 }
 
@@ -349,12 +366,24 @@ mod tests {
     fn g_functions_keywords_and_cycles_are_described() {
         let g1 = describe("g01").unwrap();
         assert_eq!(g1.name, "G1");
-        assert_eq!(g1.kind, EntryKind::GCode { group: 1, modal: true });
+        assert_eq!(
+            g1.kind,
+            EntryKind::GCode {
+                group: 1,
+                modal: true
+            }
+        );
         assert_eq!(g1.detail, "group 1 (motion), modal");
         assert!(describe("DIAMON").unwrap().summary.contains("diameter"));
-        assert_eq!(describe("G598").unwrap().detail, "group 8 (settable work offset), modal");
+        assert_eq!(
+            describe("G598").unwrap().detail,
+            "group 8 (settable work offset), modal"
+        );
         assert_eq!(describe("gotob").unwrap().kind, EntryKind::Keyword);
-        assert_eq!(describe("CYCLE81").unwrap().detail, "CYCLE81(RTP, RFP, SDIS, DP, DPR)");
+        assert_eq!(
+            describe("CYCLE81").unwrap().detail,
+            "CYCLE81(RTP, RFP, SDIS, DP, DPR)"
+        );
         assert!(describe("G12").is_none() && describe("NOSUCH").is_none());
         // Every G function of the parser's table has an entry.
         assert!(all_entries().len() > TABLE.len());

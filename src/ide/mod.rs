@@ -89,9 +89,21 @@ mod tests {
     fn edits_replace_spans_and_keep_line_ends() {
         let text = "N10 G0\r\nN20 G1\nX1";
         let edits = [
-            LineEdit { line: 2, span: Span::new(0, 1), new_text: "Y".into() },
-            LineEdit { line: 0, span: Span::new(1, 3), new_text: "100".into() },
-            LineEdit { line: 1, span: Span::new(3, 3), new_text: " M3".into() },
+            LineEdit {
+                line: 2,
+                span: Span::new(0, 1),
+                new_text: "Y".into(),
+            },
+            LineEdit {
+                line: 0,
+                span: Span::new(1, 3),
+                new_text: "100".into(),
+            },
+            LineEdit {
+                line: 1,
+                span: Span::new(3, 3),
+                new_text: " M3".into(),
+            },
         ];
         assert_eq!(apply_edits(text, &edits), "N100 G0\r\nN20 M3 G1\nY1");
         assert_eq!(apply_edits(text, &[]), text);

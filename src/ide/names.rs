@@ -13,7 +13,9 @@ pub fn identifier_prefix(line: &str, span: Span) -> Span {
     let start = span.start().min(bytes.len());
     let mut end = start;
     while end < span.end().min(bytes.len())
-        && (bytes[end].is_ascii_alphanumeric() || bytes[end] == b'_' || (end == start && bytes[end] == b'$'))
+        && (bytes[end].is_ascii_alphanumeric()
+            || bytes[end] == b'_'
+            || (end == start && bytes[end] == b'$'))
     {
         end += 1;
     }
@@ -51,7 +53,10 @@ pub fn reserved_reason(upper: &str, config: &MachineConfig) -> Option<String> {
     if keywords::statement_keyword(upper).is_some()
         || keywords::word_operator(upper).is_some()
         || is_type_name(upper)
-        || matches!(upper, "TO" | "OF" | "DO" | "AS" | "VAR" | "DEFAULT" | "NOT" | "B_NOT" | "TRUE" | "FALSE")
+        || matches!(
+            upper,
+            "TO" | "OF" | "DO" | "AS" | "VAR" | "DEFAULT" | "NOT" | "B_NOT" | "TRUE" | "FALSE"
+        )
     {
         return Some(format!("`{upper}` is a keyword of the NC language"));
     }
@@ -80,7 +85,9 @@ pub fn reserved_reason(upper: &str, config: &MachineConfig) -> Option<String> {
 
 /// `G1`, `G500`: the letter G with digits.
 fn is_g_word(upper: &str) -> bool {
-    upper.len() > 1 && upper.starts_with('G') && upper[1..].bytes().all(|byte| byte.is_ascii_digit())
+    upper.len() > 1
+        && upper.starts_with('G')
+        && upper[1..].bytes().all(|byte| byte.is_ascii_digit())
 }
 
 /// A single letter, or a letter followed by digits only (`X`, `R10`, `N5`, `L1`): the control reads
@@ -97,14 +104,22 @@ mod tests {
     #[test]
     fn reserved_names_are_refused_and_others_accepted() {
         let config = MachineConfig::default();
-        for name in ["GOTOF", "G1", "DIAMON", "X", "R10", "AC", "CR", "SIN", "REAL", "AND"] {
+        for name in [
+            "GOTOF", "G1", "DIAMON", "X", "R10", "AC", "CR", "SIN", "REAL", "AND",
+        ] {
             assert!(reserved_reason(name, &config).is_some(), "{name}");
         }
         for name in ["START", "_LOOP", "PART2", "COUNTER"] {
             assert_eq!(reserved_reason(name, &config), None, "{name}");
         }
-        assert_eq!(identifier_prefix("ARR[1]=2", Span::new(0, 6)), Span::new(0, 3));
-        assert_eq!(identifier_prefix("$P_GG[13]", Span::new(0, 9)), Span::new(0, 5));
+        assert_eq!(
+            identifier_prefix("ARR[1]=2", Span::new(0, 6)),
+            Span::new(0, 3)
+        );
+        assert_eq!(
+            identifier_prefix("$P_GG[13]", Span::new(0, 9)),
+            Span::new(0, 5)
+        );
         assert!(is_identifier("_N1") && !is_identifier("1A") && !is_identifier(""));
     }
 }

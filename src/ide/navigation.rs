@@ -17,20 +17,41 @@ use std::sync::Arc;
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub enum Symbol {
     /// A label of one program.
-    Label { document: DocumentId, name: String },
+    Label {
+        document: DocumentId,
+        name: String,
+    },
     /// A block number of one program.
-    BlockNumber { document: DocumentId, value: u64 },
+    BlockNumber {
+        document: DocumentId,
+        value: u64,
+    },
     /// A `DEF` variable or `PROC` parameter local to one program.
-    Local { document: DocumentId, name: String },
+    Local {
+        document: DocumentId,
+        name: String,
+    },
     /// Global user data: a `DEF` in a `.DEF` file or with `NCK`/`CHAN`.
-    Global { name: String },
+    Global {
+        name: String,
+    },
     /// A macro of one program (`document`) or of a `.DEF` file (`None`).
-    Macro { document: Option<DocumentId>, name: String },
+    Macro {
+        document: Option<DocumentId>,
+        name: String,
+    },
     /// A subprogram or cycle.
-    Program { name: String },
-    RParameter { number: u32 },
+    Program {
+        name: String,
+    },
+    RParameter {
+        number: u32,
+    },
     /// A name that nothing defines (in this program or the index).
-    Unresolved { document: DocumentId, name: String },
+    Unresolved {
+        document: DocumentId,
+        name: String,
+    },
 }
 
 /// How an occurrence uses its symbol.
@@ -49,39 +70,83 @@ pub struct Occurrence {
 }
 
 /// The symbol at `line`/`byte` of a document and the span of the name there.
-pub fn symbol_at(index: &WorkspaceIndex, document: &str, line: usize, byte: usize) -> Option<(Symbol, Span)> {
+pub fn symbol_at(
+    index: &WorkspaceIndex,
+    document: &str,
+    line: usize,
+    byte: usize,
+) -> Option<(Symbol, Span)> {
     let indexed = index.document(document)?;
     let table = &indexed.symbols;
     let id = &indexed.id;
     let hit = |span: Span| span.start() <= byte && byte <= span.end();
     for label in on_line(&table.labels, line, |entry| entry.line).iter() {
         if hit(label.span) {
-            return Some((Symbol::Label { document: id.clone(), name: label.name.clone() }, label.span));
+            return Some((
+                Symbol::Label {
+                    document: id.clone(),
+                    name: label.name.clone(),
+                },
+                label.span,
+            ));
         }
     }
     for jump in on_line(&table.jumps, line, |entry| entry.line).iter() {
         match &jump.destination {
             JumpDestination::Label { name, span } if hit(*span) => {
-                return Some((Symbol::Label { document: id.clone(), name: name.clone() }, *span))
+                return Some((
+                    Symbol::Label {
+                        document: id.clone(),
+                        name: name.clone(),
+                    },
+                    *span,
+                ))
             }
             JumpDestination::BlockNumber { value, span } if hit(*span) => {
-                return Some((Symbol::BlockNumber { document: id.clone(), value: *value }, *span))
+                return Some((
+                    Symbol::BlockNumber {
+                        document: id.clone(),
+                        value: *value,
+                    },
+                    *span,
+                ))
             }
             _ => {}
         }
     }
     for number in on_line(&table.block_numbers, line, |entry| entry.line).iter() {
         if hit(number.span) {
-            return Some((Symbol::BlockNumber { document: id.clone(), value: number.value }, number.span));
+            return Some((
+                Symbol::BlockNumber {
+                    document: id.clone(),
+                    value: number.value,
+                },
+                number.span,
+            ));
         }
     }
-    if let Some(procedure) = table.procedure.as_ref().filter(|procedure| procedure.line == line) {
+    if let Some(procedure) = table
+        .procedure
+        .as_ref()
+        .filter(|procedure| procedure.line == line)
+    {
         if hit(procedure.span) {
-            return Some((Symbol::Program { name: procedure.name.clone() }, procedure.span));
+            return Some((
+                Symbol::Program {
+                    name: procedure.name.clone(),
+                },
+                procedure.span,
+            ));
         }
         for parameter in &procedure.parameters {
             if hit(parameter.span) {
-                return Some((Symbol::Local { document: id.clone(), name: parameter.name.clone() }, parameter.span));
+                return Some((
+                    Symbol::Local {
+                        document: id.clone(),
+                        name: parameter.name.clone(),
+                    },
+                    parameter.span,
+                ));
             }
         }
     }
@@ -92,12 +157,20 @@ pub fn symbol_at(index: &WorkspaceIndex, document: &str, line: usize, byte: usiz
     }
     for definition in on_line(&table.macros, line, |entry| entry.line).iter() {
         if hit(definition.span) {
-            return Some((resolve_name(index, indexed, &definition.name), definition.span));
+            return Some((
+                resolve_name(index, indexed, &definition.name),
+                definition.span,
+            ));
         }
     }
     for declaration in on_line(&table.externs, line, |entry| entry.line).iter() {
         if hit(declaration.span) {
-            return Some((Symbol::Program { name: declaration.name.clone() }, declaration.span));
+            return Some((
+                Symbol::Program {
+                    name: declaration.name.clone(),
+                },
+                declaration.span,
+            ));
         }
     }
     for call in on_line(&table.calls, line, |entry| entry.line).iter() {
@@ -126,14 +199,15 @@ pub(crate) fn on_line<T>(entries: &[T], line: usize, line_of: impl Fn(&T) -> usi
 }
 
 fn defines_locally(table: &SymbolTable, name: &str) -> bool {
-    table
-        .procedure
-        .as_ref()
-        .is_some_and(|procedure| procedure.parameters.iter().any(|parameter| parameter.name == name))
-        || table
-            .variables
+    table.procedure.as_ref().is_some_and(|procedure| {
+        procedure
+            .parameters
             .iter()
-            .any(|variable| variable.name == name && variable.global_attribute.is_none())
+            .any(|parameter| parameter.name == name)
+    }) || table
+        .variables
+        .iter()
+        .any(|variable| variable.name == name && variable.global_attribute.is_none())
 }
 
 /// What a variable-like name means in a document: a local definition wins over a macro of the
@@ -142,27 +216,54 @@ pub fn resolve_name(index: &WorkspaceIndex, document: &IndexedDocument, name: &s
     let table = &document.symbols;
     let in_definition_file = document.kind == crate::ide::workspace::FileKind::Definitions;
     if defines_locally(table, name) && !in_definition_file {
-        return Symbol::Local { document: document.id.clone(), name: name.to_string() };
+        return Symbol::Local {
+            document: document.id.clone(),
+            name: name.to_string(),
+        };
     }
-    if table.macros.iter().any(|definition| definition.name == name) && !in_definition_file {
-        return Symbol::Macro { document: Some(document.id.clone()), name: name.to_string() };
+    if table
+        .macros
+        .iter()
+        .any(|definition| definition.name == name)
+        && !in_definition_file
+    {
+        return Symbol::Macro {
+            document: Some(document.id.clone()),
+            name: name.to_string(),
+        };
     }
-    if table.variables.iter().any(|variable| variable.name == name) || index.global_variables(name).next().is_some() {
-        return Symbol::Global { name: name.to_string() };
+    if table.variables.iter().any(|variable| variable.name == name)
+        || index.global_variables(name).next().is_some()
+    {
+        return Symbol::Global {
+            name: name.to_string(),
+        };
     }
-    if in_definition_file && table.macros.iter().any(|definition| definition.name == name)
+    if in_definition_file
+        && table
+            .macros
+            .iter()
+            .any(|definition| definition.name == name)
         || index.global_macros(name).next().is_some()
     {
-        return Symbol::Macro { document: None, name: name.to_string() };
+        return Symbol::Macro {
+            document: None,
+            name: name.to_string(),
+        };
     }
-    Symbol::Unresolved { document: document.id.clone(), name: name.to_string() }
+    Symbol::Unresolved {
+        document: document.id.clone(),
+        name: name.to_string(),
+    }
 }
 
 /// What a called name means: a macro reads like a call, so macros come first (reference §8.10).
 pub fn resolve_call(index: &WorkspaceIndex, document: &IndexedDocument, name: &str) -> Symbol {
     match resolve_name(index, document, name) {
         symbol @ Symbol::Macro { .. } => symbol,
-        _ => Symbol::Program { name: name.to_string() },
+        _ => Symbol::Program {
+            name: name.to_string(),
+        },
     }
 }
 
@@ -171,7 +272,11 @@ pub fn occurrences(index: &WorkspaceIndex, symbol: &Symbol) -> Vec<Occurrence> {
     let mut out = Vec::new();
     let mut push = |document: &DocumentId, line: usize, span: Span, role: Role| {
         out.push(Occurrence {
-            location: Location { document: document.clone(), line, span },
+            location: Location {
+                document: document.clone(),
+                line,
+                span,
+            },
             role,
         })
     };
@@ -208,7 +313,11 @@ pub fn occurrences(index: &WorkspaceIndex, symbol: &Symbol) -> Vec<Occurrence> {
                     .map(|number| (number.line, number.span, Role::Definition))
                     .collect();
                 for jump in &table.jumps {
-                    if let JumpDestination::BlockNumber { value: target, span } = &jump.destination {
+                    if let JumpDestination::BlockNumber {
+                        value: target,
+                        span,
+                    } = &jump.destination
+                    {
                         if target == value {
                             items.push((jump.line, *span, Role::Read));
                         }
@@ -242,7 +351,10 @@ pub fn occurrences(index: &WorkspaceIndex, symbol: &Symbol) -> Vec<Occurrence> {
             for indexed in index.documents() {
                 let matches = match document {
                     Some(document) => &indexed.id == document,
-                    None => matches!(resolve_name(index, indexed, name), Symbol::Macro { document: None, .. }),
+                    None => matches!(
+                        resolve_name(index, indexed, name),
+                        Symbol::Macro { document: None, .. }
+                    ),
                 };
                 if matches {
                     for (line, span, role) in name_occurrences(&indexed.symbols, name, true) {
@@ -255,13 +367,22 @@ pub fn occurrences(index: &WorkspaceIndex, symbol: &Symbol) -> Vec<Occurrence> {
             for indexed in index.documents() {
                 let table = &indexed.symbols;
                 let mut items: Vec<(usize, Span, Role)> = Vec::new();
-                if let Some(procedure) = table.procedure.as_ref().filter(|procedure| &procedure.name == name) {
+                if let Some(procedure) = table
+                    .procedure
+                    .as_ref()
+                    .filter(|procedure| &procedure.name == name)
+                {
                     items.push((procedure.line, procedure.span, Role::Definition));
                 }
-                for declaration in table.externs.iter().filter(|declaration| &declaration.name == name) {
+                for declaration in table
+                    .externs
+                    .iter()
+                    .filter(|declaration| &declaration.name == name)
+                {
                     items.push((declaration.line, declaration.span, Role::Read));
                 }
-                let is_macro_here = matches!(resolve_name(index, indexed, name), Symbol::Macro { .. });
+                let is_macro_here =
+                    matches!(resolve_name(index, indexed, name), Symbol::Macro { .. });
                 if !is_macro_here {
                     for call in table.calls.iter().filter(|call| &call.name == name) {
                         items.push((call.line, call.span, Role::Read));
@@ -275,8 +396,17 @@ pub fn occurrences(index: &WorkspaceIndex, symbol: &Symbol) -> Vec<Occurrence> {
         }
         Symbol::RParameter { number } => {
             for indexed in index.documents() {
-                for parameter in indexed.symbols.r_parameters.iter().filter(|parameter| parameter.number == Some(*number)) {
-                    let role = if parameter.write { Role::Write } else { Role::Read };
+                for parameter in indexed
+                    .symbols
+                    .r_parameters
+                    .iter()
+                    .filter(|parameter| parameter.number == Some(*number))
+                {
+                    let role = if parameter.write {
+                        Role::Write
+                    } else {
+                        Role::Read
+                    };
                     push(&indexed.id, parameter.line, parameter.span, role);
                 }
             }
@@ -290,21 +420,49 @@ pub fn occurrences(index: &WorkspaceIndex, symbol: &Symbol) -> Vec<Occurrence> {
 fn name_occurrences(table: &SymbolTable, name: &str, with_calls: bool) -> Vec<(usize, Span, Role)> {
     let mut items: Vec<(usize, Span, Role)> = Vec::new();
     if let Some(procedure) = &table.procedure {
-        for parameter in procedure.parameters.iter().filter(|parameter| parameter.name == name) {
+        for parameter in procedure
+            .parameters
+            .iter()
+            .filter(|parameter| parameter.name == name)
+        {
             items.push((parameter.line, parameter.span, Role::Definition));
         }
     }
-    for variable in table.variables.iter().filter(|variable| variable.name == name) {
+    for variable in table
+        .variables
+        .iter()
+        .filter(|variable| variable.name == name)
+    {
         items.push((variable.line, variable.span, Role::Definition));
     }
-    for definition in table.macros.iter().filter(|definition| definition.name == name) {
+    for definition in table
+        .macros
+        .iter()
+        .filter(|definition| definition.name == name)
+    {
         items.push((definition.line, definition.span, Role::Definition));
     }
-    for name_use in table.name_uses.iter().filter(|name_use| name_use.name == name) {
-        items.push((name_use.line, name_use.span, if name_use.write { Role::Write } else { Role::Read }));
+    for name_use in table
+        .name_uses
+        .iter()
+        .filter(|name_use| name_use.name == name)
+    {
+        items.push((
+            name_use.line,
+            name_use.span,
+            if name_use.write {
+                Role::Write
+            } else {
+                Role::Read
+            },
+        ));
     }
     if with_calls {
-        for call in table.calls.iter().filter(|call| call.name == name && call.style == CallStyle::Named) {
+        for call in table
+            .calls
+            .iter()
+            .filter(|call| call.name == name && call.style == CallStyle::Named)
+        {
             items.push((call.line, call.span, Role::Read));
         }
     }
@@ -314,7 +472,12 @@ fn name_occurrences(table: &SymbolTable, name: &str, with_calls: bool) -> Vec<(u
 
 /// Go to definition: where the symbol at the cursor is defined. A jump goes to the label or block it
 /// reaches (in its direction); a call to the `PROC` header, or to the start of the file named so.
-pub fn definition(index: &WorkspaceIndex, document: &str, line: usize, byte: usize) -> Vec<Location> {
+pub fn definition(
+    index: &WorkspaceIndex,
+    document: &str,
+    line: usize,
+    byte: usize,
+) -> Vec<Location> {
     let Some((symbol, _)) = symbol_at(index, document, line, byte) else {
         return Vec::new();
     };
@@ -324,9 +487,22 @@ pub fn definition(index: &WorkspaceIndex, document: &str, line: usize, byte: usi
     if let Symbol::Program { name } = &symbol {
         let mut out: Vec<Location> = Vec::new();
         for indexed in index.programs_named(name) {
-            match indexed.symbols.procedure.as_ref().filter(|procedure| &procedure.name == name) {
-                Some(procedure) => out.push(Location { document: indexed.id.clone(), line: procedure.line, span: procedure.span }),
-                None => out.push(Location { document: indexed.id.clone(), line: 0, span: Span::new(0, 0) }),
+            match indexed
+                .symbols
+                .procedure
+                .as_ref()
+                .filter(|procedure| &procedure.name == name)
+            {
+                Some(procedure) => out.push(Location {
+                    document: indexed.id.clone(),
+                    line: procedure.line,
+                    span: procedure.span,
+                }),
+                None => out.push(Location {
+                    document: indexed.id.clone(),
+                    line: 0,
+                    span: Span::new(0, 0),
+                }),
             }
         }
         return out;
@@ -339,15 +515,22 @@ pub fn definition(index: &WorkspaceIndex, document: &str, line: usize, byte: usi
 }
 
 /// For the target of a jump at the cursor: the label or block number it reaches, if it reaches one.
-fn jump_target_at(index: &WorkspaceIndex, document: &str, line: usize, byte: usize) -> Option<Location> {
+fn jump_target_at(
+    index: &WorkspaceIndex,
+    document: &str,
+    line: usize,
+    byte: usize,
+) -> Option<Location> {
     let indexed = index.document(document)?;
     let table = &indexed.symbols;
-    let jump = on_line(&table.jumps, line, |entry| entry.line).iter().find(|jump| match &jump.destination {
-        JumpDestination::Label { span, .. } | JumpDestination::BlockNumber { span, .. } => {
-            span.start() <= byte && byte <= span.end()
-        }
-        _ => false,
-    })?;
+    let jump = on_line(&table.jumps, line, |entry| entry.line)
+        .iter()
+        .find(|jump| match &jump.destination {
+            JumpDestination::Label { span, .. } | JumpDestination::BlockNumber { span, .. } => {
+                span.start() <= byte && byte <= span.end()
+            }
+            _ => false,
+        })?;
     let (lines, spans): (Vec<usize>, Vec<Span>) = match &jump.destination {
         JumpDestination::Label { name, .. } => table
             .labels
@@ -366,7 +549,11 @@ fn jump_target_at(index: &WorkspaceIndex, document: &str, line: usize, byte: usi
     match resolve_jump(jump.kind, line, &lines) {
         JumpResolution::Found(target) | JumpResolution::WrongDirection(target) => {
             let position = lines.iter().position(|candidate| *candidate == target)?;
-            Some(Location { document: indexed.id.clone(), line: target, span: spans[position] })
+            Some(Location {
+                document: indexed.id.clone(),
+                line: target,
+                span: spans[position],
+            })
         }
         JumpResolution::Missing => None,
     }
@@ -374,7 +561,13 @@ fn jump_target_at(index: &WorkspaceIndex, document: &str, line: usize, byte: usi
 
 /// Find references: every occurrence of the symbol at the cursor, the definitions included when
 /// `include_declaration` is set.
-pub fn references(index: &WorkspaceIndex, document: &str, line: usize, byte: usize, include_declaration: bool) -> Vec<Location> {
+pub fn references(
+    index: &WorkspaceIndex,
+    document: &str,
+    line: usize,
+    byte: usize,
+    include_declaration: bool,
+) -> Vec<Location> {
     let Some((symbol, _)) = symbol_at(index, document, line, byte) else {
         return Vec::new();
     };
@@ -387,14 +580,25 @@ pub fn references(index: &WorkspaceIndex, document: &str, line: usize, byte: usi
 
 /// Document highlights: the occurrences of the symbol at the cursor in the same document (a label
 /// and the jumps to it, a variable and its reads and writes).
-pub fn highlights(index: &WorkspaceIndex, document: &str, line: usize, byte: usize) -> Vec<(usize, Span, Role)> {
+pub fn highlights(
+    index: &WorkspaceIndex,
+    document: &str,
+    line: usize,
+    byte: usize,
+) -> Vec<(usize, Span, Role)> {
     let Some((symbol, _)) = symbol_at(index, document, line, byte) else {
         return Vec::new();
     };
     occurrences(index, &symbol)
         .into_iter()
         .filter(|occurrence| &*occurrence.location.document == document)
-        .map(|occurrence| (occurrence.location.line, occurrence.location.span, occurrence.role))
+        .map(|occurrence| {
+            (
+                occurrence.location.line,
+                occurrence.location.span,
+                occurrence.role,
+            )
+        })
         .collect()
 }
 
@@ -417,7 +621,12 @@ pub enum RenameError {
 }
 
 /// Prepare rename: the span of the renamable name at the cursor and its current text.
-pub fn prepare_rename(index: &WorkspaceIndex, document: &str, line: usize, byte: usize) -> Option<(Span, Symbol)> {
+pub fn prepare_rename(
+    index: &WorkspaceIndex,
+    document: &str,
+    line: usize,
+    byte: usize,
+) -> Option<(Span, Symbol)> {
     let (symbol, span) = symbol_at(index, document, line, byte)?;
     (!matches!(symbol, Symbol::Unresolved { .. })).then_some((span, symbol))
 }
@@ -432,15 +641,20 @@ pub fn rename(
     byte: usize,
     new_name: &str,
 ) -> Result<WorkspaceEdit, RenameError> {
-    let (_, symbol) = prepare_rename(index, document, line, byte).ok_or(RenameError::NothingToRename)?;
+    let (_, symbol) =
+        prepare_rename(index, document, line, byte).ok_or(RenameError::NothingToRename)?;
     let new_upper = upper(new_name.trim());
     let new_text = match &symbol {
         Symbol::RParameter { .. } => {
             let digits = new_upper.strip_prefix('R').unwrap_or("");
             if digits.is_empty() || !digits.bytes().all(|byte| byte.is_ascii_digit()) {
-                return Err(RenameError::Refused(format!("`{new_name}` is not an R parameter (R followed by its number)")));
+                return Err(RenameError::Refused(format!(
+                    "`{new_name}` is not an R parameter (R followed by its number)"
+                )));
             }
-            let number: u32 = digits.parse().map_err(|_| RenameError::Refused(format!("`{new_name}` is out of range")))?;
+            let number: u32 = digits
+                .parse()
+                .map_err(|_| RenameError::Refused(format!("`{new_name}` is out of range")))?;
             if number >= config.r_parameter_count {
                 return Err(RenameError::Refused(format!(
                     "R{number} does not exist: the machine has {} R parameters (MD28050)",
@@ -454,9 +668,19 @@ pub fn rename(
             let number: u64 = digits
                 .parse()
                 .map_err(|_| RenameError::Refused(format!("`{new_name}` is not a block number")))?;
-            let table = &index.document(document).ok_or(RenameError::NothingToRename)?.symbols;
-            if number != *value && table.block_numbers.iter().any(|entry| entry.value == number) {
-                return Err(RenameError::Refused(format!("block number {number} is already used in this program")));
+            let table = &index
+                .document(document)
+                .ok_or(RenameError::NothingToRename)?
+                .symbols;
+            if number != *value
+                && table
+                    .block_numbers
+                    .iter()
+                    .any(|entry| entry.value == number)
+            {
+                return Err(RenameError::Refused(format!(
+                    "block number {number} is already used in this program"
+                )));
             }
             number.to_string()
         }
@@ -486,16 +710,27 @@ pub fn rename(
             }
             _ => (occurrence.location.span, new_text.clone()),
         };
-        let line_edit = LineEdit { line: occurrence.location.line, span: replacement.0, new_text: replacement.1 };
-        match edit.changes.iter_mut().find(|(id, _)| *id == occurrence.location.document) {
+        let line_edit = LineEdit {
+            line: occurrence.location.line,
+            span: replacement.0,
+            new_text: replacement.1,
+        };
+        match edit
+            .changes
+            .iter_mut()
+            .find(|(id, _)| *id == occurrence.location.document)
+        {
             Some((_, edits)) => edits.push(line_edit),
-            None => edit.changes.push((occurrence.location.document.clone(), vec![line_edit])),
+            None => edit
+                .changes
+                .push((occurrence.location.document.clone(), vec![line_edit])),
         }
     }
     if let Symbol::Program { name } = &symbol {
         for indexed in index.programs_named(name) {
             if &indexed.program_name == name {
-                edit.renamed_programs.push((Arc::clone(&indexed.id), new_text.clone()));
+                edit.renamed_programs
+                    .push((Arc::clone(&indexed.id), new_text.clone()));
             }
         }
     }
@@ -508,15 +743,27 @@ fn collision(index: &WorkspaceIndex, symbol: &Symbol, new_name: &str) -> Option<
         if table.labels.iter().any(|label| label.name == new_name) {
             return Some("a label");
         }
-        if table.variables.iter().any(|variable| variable.name == new_name) {
+        if table
+            .variables
+            .iter()
+            .any(|variable| variable.name == new_name)
+        {
             return Some("a variable");
         }
         if table.procedure.as_ref().is_some_and(|procedure| {
-            procedure.name == new_name || procedure.parameters.iter().any(|parameter| parameter.name == new_name)
+            procedure.name == new_name
+                || procedure
+                    .parameters
+                    .iter()
+                    .any(|parameter| parameter.name == new_name)
         }) {
             return Some("the program or one of its parameters");
         }
-        if table.macros.iter().any(|definition| definition.name == new_name) {
+        if table
+            .macros
+            .iter()
+            .any(|definition| definition.name == new_name)
+        {
             return Some("a macro");
         }
         None
@@ -526,7 +773,10 @@ fn collision(index: &WorkspaceIndex, symbol: &Symbol, new_name: &str) -> Option<
         | Symbol::BlockNumber { document, .. }
         | Symbol::Local { document, .. }
         | Symbol::Unresolved { document, .. }
-        | Symbol::Macro { document: Some(document), .. } => index.document(document).into_iter().collect(),
+        | Symbol::Macro {
+            document: Some(document),
+            ..
+        } => index.document(document).into_iter().collect(),
         _ => index.documents().collect(),
     };
     for indexed in affected {
@@ -534,11 +784,17 @@ fn collision(index: &WorkspaceIndex, symbol: &Symbol, new_name: &str) -> Option<
             return Some(format!("`{new_name}` is already {what} in {}", indexed.id));
         }
     }
-    if index.programs_named(new_name).next().is_some() || crate::ide::cycles::cycle(new_name).is_some() {
+    if index.programs_named(new_name).next().is_some()
+        || crate::ide::cycles::cycle(new_name).is_some()
+    {
         return Some(format!("`{new_name}` is already the name of a program"));
     }
-    if index.global_variables(new_name).next().is_some() || index.global_macros(new_name).next().is_some() {
-        return Some(format!("`{new_name}` is already defined in a definition file"));
+    if index.global_variables(new_name).next().is_some()
+        || index.global_macros(new_name).next().is_some()
+    {
+        return Some(format!(
+            "`{new_name}` is already defined in a definition file"
+        ));
     }
     None
 }

@@ -60,7 +60,10 @@ pub fn document_symbols(table: &SymbolTable) -> Vec<OutlineItem> {
     let mut top: Vec<OutlineItem> = Vec::new();
     let mut leaves = leaves.into_iter().peekable();
     for (position, section) in table.sections.iter().enumerate() {
-        let end = table.sections.get(position + 1).map_or(last_line, |next| next.line.saturating_sub(1));
+        let end = table
+            .sections
+            .get(position + 1)
+            .map_or(last_line, |next| next.line.saturating_sub(1));
         while let Some(leaf) = leaves.next_if(|leaf| leaf.lines.0 < section.line) {
             top.push(leaf);
         }
@@ -81,7 +84,11 @@ pub fn document_symbols(table: &SymbolTable) -> Vec<OutlineItem> {
     top.extend(leaves);
     match &table.procedure {
         Some(procedure) => {
-            let parameters: Vec<String> = procedure.parameters.iter().map(|parameter| parameter.name.clone()).collect();
+            let parameters: Vec<String> = procedure
+                .parameters
+                .iter()
+                .map(|parameter| parameter.name.clone())
+                .collect();
             vec![OutlineItem {
                 name: procedure.name.clone(),
                 detail: format!("PROC({})", parameters.join(", ")),
@@ -126,18 +133,28 @@ fn closer_of(keyword: StructureKeyword) -> Option<StructureKeyword> {
 /// The folding ranges of a document, sorted by start line.
 pub fn folding_ranges(table: &SymbolTable) -> Vec<FoldingRange> {
     let mut out = Vec::new();
-    let push = |out: &mut Vec<FoldingRange>, start_line: usize, end_line: usize, kind: FoldingKind| {
-        if end_line > start_line {
-            out.push(FoldingRange { start_line, end_line, kind });
-        }
-    };
+    let push =
+        |out: &mut Vec<FoldingRange>, start_line: usize, end_line: usize, kind: FoldingKind| {
+            if end_line > start_line {
+                out.push(FoldingRange {
+                    start_line,
+                    end_line,
+                    kind,
+                });
+            }
+        };
     // Open structures: (keyword, line where the current part starts).
     let mut open: Vec<(StructureKeyword, usize)> = Vec::new();
     for mark in &table.structures {
         match mark.keyword {
             StructureKeyword::Else => {
                 if let Some(top) = open.last_mut().filter(|top| top.0 == StructureKeyword::If) {
-                    push(&mut out, top.1, mark.line.saturating_sub(1), FoldingKind::Structure);
+                    push(
+                        &mut out,
+                        top.1,
+                        mark.line.saturating_sub(1),
+                        FoldingKind::Structure,
+                    );
                     top.1 = mark.line;
                 }
             }
@@ -148,29 +165,47 @@ pub fn folding_ranges(table: &SymbolTable) -> Vec<FoldingRange> {
                     .iter()
                     .filter(|jump| jump.in_case && jump.line == mark.line)
                     .filter_map(|jump| match &jump.destination {
-                        JumpDestination::Label { name, .. } => {
-                            table.labels.iter().find(|label| &label.name == name && label.line > mark.line).map(|label| label.line)
-                        }
+                        JumpDestination::Label { name, .. } => table
+                            .labels
+                            .iter()
+                            .find(|label| &label.name == name && label.line > mark.line)
+                            .map(|label| label.line),
                         _ => None,
                     })
                     .max();
                 if let Some(last_target) = last_target {
-                    push(&mut out, mark.line, last_target.saturating_sub(1), FoldingKind::Structure);
+                    push(
+                        &mut out,
+                        mark.line,
+                        last_target.saturating_sub(1),
+                        FoldingKind::Structure,
+                    );
                 }
             }
             keyword if closer_of(keyword).is_some() => open.push((keyword, mark.line)),
             closing => {
-                if let Some(position) = open.iter().rposition(|(keyword, _)| closer_of(*keyword) == Some(closing)) {
+                if let Some(position) = open
+                    .iter()
+                    .rposition(|(keyword, _)| closer_of(*keyword) == Some(closing))
+                {
                     let start = open[position].1;
                     open.truncate(position);
-                    push(&mut out, start, mark.line.saturating_sub(1), FoldingKind::Structure);
+                    push(
+                        &mut out,
+                        start,
+                        mark.line.saturating_sub(1),
+                        FoldingKind::Structure,
+                    );
                 }
             }
         }
     }
     let last_line = table.line_count.saturating_sub(1);
     for (position, section) in table.sections.iter().enumerate() {
-        let end = table.sections.get(position + 1).map_or(last_line, |next| next.line.saturating_sub(1));
+        let end = table
+            .sections
+            .get(position + 1)
+            .map_or(last_line, |next| next.line.saturating_sub(1));
         push(&mut out, section.line, end, FoldingKind::Section);
     }
     out.sort_by_key(|range| (range.start_line, std::cmp::Reverse(range.end_line)));

@@ -33,7 +33,11 @@ pub struct RenumberOptions {
 
 impl Default for RenumberOptions {
     fn default() -> RenumberOptions {
-        RenumberOptions { start: 10, step: 10, mode: NumberingMode::Keep }
+        RenumberOptions {
+            start: 10,
+            step: 10,
+            mode: NumberingMode::Keep,
+        }
     }
 }
 
@@ -75,9 +79,15 @@ struct LineLayout {
 }
 
 /// The edits that renumber a program.
-pub fn renumber(source: &dyn LineSource, config: &MachineConfig, options: RenumberOptions) -> Result<Vec<LineEdit>, RenumberError> {
+pub fn renumber(
+    source: &dyn LineSource,
+    config: &MachineConfig,
+    options: RenumberOptions,
+) -> Result<Vec<LineEdit>, RenumberError> {
     if options.step == 0 {
-        return Err(RenumberError::InvalidNumbers("the step between block numbers must be at least 1".into()));
+        return Err(RenumberError::InvalidNumbers(
+            "the step between block numbers must be at least 1".into(),
+        ));
     }
     let table = SymbolTable::build(source, config);
     let layouts = line_layouts(source, config, &table);
@@ -85,7 +95,10 @@ pub fn renumber(source: &dyn LineSource, config: &MachineConfig, options: Renumb
     // Which numbered lines a jump reaches, and jumps whose target is missing.
     let mut lines_by_value: HashMap<u64, Vec<usize>> = HashMap::new();
     for entry in &table.block_numbers {
-        lines_by_value.entry(entry.value).or_default().push(entry.line);
+        lines_by_value
+            .entry(entry.value)
+            .or_default()
+            .push(entry.line);
     }
     let mut jump_targets: Vec<(usize, Span, Option<usize>, u64)> = Vec::new();
     for jump in &table.jumps {
@@ -98,7 +111,10 @@ pub fn renumber(source: &dyn LineSource, config: &MachineConfig, options: Renumb
             jump_targets.push((jump.line, *span, target, *value));
         }
     }
-    let targeted: std::collections::HashSet<usize> = jump_targets.iter().filter_map(|(_, _, target, _)| *target).collect();
+    let targeted: std::collections::HashSet<usize> = jump_targets
+        .iter()
+        .filter_map(|(_, _, target, _)| *target)
+        .collect();
 
     let mut edits = Vec::new();
     let mut new_numbers: HashMap<usize, u64> = HashMap::new();
@@ -107,7 +123,9 @@ pub fn renumber(source: &dyn LineSource, config: &MachineConfig, options: Renumb
         let gets_number = match options.mode {
             NumberingMode::Keep => layout.number.is_some(),
             NumberingMode::All => layout.number.is_some() || layout.numberable,
-            NumberingMode::Drop => layout.number.is_some() && (targeted.contains(&line_index) || layout.is_procedure),
+            NumberingMode::Drop => {
+                layout.number.is_some() && (targeted.contains(&line_index) || layout.is_procedure)
+            }
         };
         match (gets_number, layout.number) {
             (true, number) => {
@@ -119,14 +137,18 @@ pub fn renumber(source: &dyn LineSource, config: &MachineConfig, options: Renumb
                 new_numbers.insert(line_index, next);
                 match number {
                     // `N` or `:` stays as written; only the digits change.
-                    Some(span) => edits.push(LineEdit { line: line_index, span: Span::new(span.start() + 1, span.end()), new_text: next.to_string() }),
+                    Some(span) => edits.push(LineEdit {
+                        line: line_index,
+                        span: Span::new(span.start() + 1, span.end()),
+                        new_text: next.to_string(),
+                    }),
                     None => edits.push(LineEdit {
                         line: line_index,
                         span: Span::new(layout.insert_at, layout.insert_at),
                         new_text: format!("N{next} "),
                     }),
                 }
-                next = next.checked_add(options.step).unwrap_or(u64::MAX);
+                next = next.saturating_add(options.step);
             }
             (false, Some(span)) => {
                 let line = source.line(line_index);
@@ -134,7 +156,11 @@ pub fn renumber(source: &dyn LineSource, config: &MachineConfig, options: Renumb
                 while matches!(line.as_bytes().get(end), Some(b' ' | b'\t')) {
                     end += 1;
                 }
-                edits.push(LineEdit { line: line_index, span: Span::new(span.start(), end), new_text: String::new() });
+                edits.push(LineEdit {
+                    line: line_index,
+                    span: Span::new(span.start(), end),
+                    new_text: String::new(),
+                });
             }
             (false, None) => {}
         }
@@ -142,7 +168,11 @@ pub fn renumber(source: &dyn LineSource, config: &MachineConfig, options: Renumb
     let new_values: std::collections::HashSet<u64> = new_numbers.values().copied().collect();
     for (line, span, target, value) in jump_targets {
         match target.and_then(|target| new_numbers.get(&target)) {
-            Some(new_value) => edits.push(LineEdit { line, span: Span::new(span.start() + 1, span.end()), new_text: new_value.to_string() }),
+            Some(new_value) => edits.push(LineEdit {
+                line,
+                span: Span::new(span.start() + 1, span.end()),
+                new_text: new_value.to_string(),
+            }),
             None if target.is_none() && new_values.contains(&value) => {
                 return Err(RenumberError::JumpWouldGainTarget { line, value })
             }
@@ -153,12 +183,24 @@ pub fn renumber(source: &dyn LineSource, config: &MachineConfig, options: Renumb
 }
 
 /// Renumbers a whole text and returns the new text (line ends kept).
-pub fn renumber_text(text: &str, config: &MachineConfig, options: RenumberOptions) -> Result<String, RenumberError> {
-    let edits = renumber(&crate::analysis::document::TextLines::new(text), config, options)?;
+pub fn renumber_text(
+    text: &str,
+    config: &MachineConfig,
+    options: RenumberOptions,
+) -> Result<String, RenumberError> {
+    let edits = renumber(
+        &crate::analysis::document::TextLines::new(text),
+        config,
+        options,
+    )?;
     Ok(crate::ide::apply_edits(text, &edits))
 }
 
-fn line_layouts(source: &dyn LineSource, config: &MachineConfig, table: &SymbolTable) -> Vec<LineLayout> {
+fn line_layouts(
+    source: &dyn LineSource,
+    config: &MachineConfig,
+    table: &SymbolTable,
+) -> Vec<LineLayout> {
     let mut context = SyntaxContext::new(config);
     for definition in &table.macros {
         context.add_macro(&definition.name);
@@ -183,7 +225,9 @@ fn line_layouts(source: &dyn LineSource, config: &MachineConfig, table: &SymbolT
         layouts.push(LineLayout {
             number: block.number.map(|number| number.span),
             insert_at,
-            numberable: !block.is_header && !is_procedure && (!block.statements.is_empty() || block.label.is_some()),
+            numberable: !block.is_header
+                && !is_procedure
+                && (!block.statements.is_empty() || block.label.is_some()),
             is_procedure,
         });
         true

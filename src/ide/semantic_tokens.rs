@@ -9,7 +9,9 @@ use crate::config::MachineConfig;
 use crate::diagnostics::Span;
 use crate::ide::names::{identifier_prefix, is_type_name, text_of, upper};
 use crate::ide::symbols::SymbolTable;
-use crate::syntax::ast::{AddressKind, AssignTarget, Block, ExprKind, JumpTarget, Statement, ValueExpr};
+use crate::syntax::ast::{
+    AddressKind, AssignTarget, Block, ExprKind, JumpTarget, Statement, ValueExpr,
+};
 use crate::syntax::keywords;
 use crate::syntax::lexer::{lex_line_into, Lexeme, Token};
 use crate::syntax::{LineParser, SyntaxContext};
@@ -22,7 +24,9 @@ pub enum TokenKind {
     Number,
     Keyword,
     /// A G function, by its group (0 for a G number that does not exist).
-    GCode { group: u8 },
+    GCode {
+        group: u8,
+    },
     Axis,
     /// An address that is not an axis: F, S, T, D, M, H, I/J/K, CR, AP, ...
     Address,
@@ -57,7 +61,12 @@ pub struct SemanticToken {
 }
 
 /// The tokens of the lines in `lines` (clamped to the document), in order.
-pub fn semantic_tokens(source: &dyn LineSource, table: &SymbolTable, config: &MachineConfig, lines: Range<usize>) -> Vec<SemanticToken> {
+pub fn semantic_tokens(
+    source: &dyn LineSource,
+    table: &SymbolTable,
+    config: &MachineConfig,
+    lines: Range<usize>,
+) -> Vec<SemanticToken> {
     let mut context = SyntaxContext::new(config);
     for definition in &table.macros {
         context.add_macro(&definition.name);
@@ -82,11 +91,20 @@ pub fn semantic_tokens(source: &dyn LineSource, table: &SymbolTable, config: &Ma
 
 /// The kind of a variable-like name in this document.
 fn name_kind(name: &str, table: &SymbolTable, config: &MachineConfig) -> TokenKind {
-    if table.procedure.as_ref().is_some_and(|procedure| procedure.parameters.iter().any(|parameter| parameter.name == name)) {
+    if table.procedure.as_ref().is_some_and(|procedure| {
+        procedure
+            .parameters
+            .iter()
+            .any(|parameter| parameter.name == name)
+    }) {
         TokenKind::Parameter
     } else if table.variables.iter().any(|variable| variable.name == name) {
         TokenKind::Variable
-    } else if table.macros.iter().any(|definition| definition.name == name) {
+    } else if table
+        .macros
+        .iter()
+        .any(|definition| definition.name == name)
+    {
         TokenKind::Macro
     } else if matches!(name, "TRUE" | "FALSE") {
         TokenKind::Keyword
@@ -124,12 +142,24 @@ fn line_tokens(
             ExprKind::Number(_) => found.push((expr.span, TokenKind::Number, 0)),
             ExprKind::String => found.push((expr.span, TokenKind::String, 0)),
             ExprKind::RParameter(_) => found.push((expr.span, TokenKind::RParameter, 0)),
-            ExprKind::RParameterIndexed(_) => found.push((Span::new(expr.span.start(), expr.span.start() + 1), TokenKind::RParameter, 0)),
+            ExprKind::RParameterIndexed(_) => found.push((
+                Span::new(expr.span.start(), expr.span.start() + 1),
+                TokenKind::RParameter,
+                0,
+            )),
             ExprKind::Name { .. } => {
                 let span = identifier_prefix(line, expr.span);
-                found.push((span, name_kind(&upper(text_of(line, span)), table, config), 0));
+                found.push((
+                    span,
+                    name_kind(&upper(text_of(line, span)), table, config),
+                    0,
+                ));
             }
-            ExprKind::SystemVariable { .. } => found.push((identifier_prefix(line, expr.span), TokenKind::SystemVariable, 0)),
+            ExprKind::SystemVariable { .. } => found.push((
+                identifier_prefix(line, expr.span),
+                TokenKind::SystemVariable,
+                0,
+            )),
             ExprKind::Call { name, .. } => found.push((*name, TokenKind::Function, 0)),
             _ => {}
         }
@@ -138,7 +168,10 @@ fn line_tokens(
     found.sort_by_key(|(span, _, _)| (span.start(), std::cmp::Reverse(span.end())));
     let mut tokens: Vec<(Span, TokenKind, u32)> = Vec::with_capacity(found.len() + 4);
     for item in found {
-        if tokens.last().is_none_or(|last| last.0.end() <= item.0.start()) {
+        if tokens
+            .last()
+            .is_none_or(|last| last.0.end() <= item.0.start())
+        {
             tokens.push(item);
         }
     }
@@ -147,7 +180,9 @@ fn line_tokens(
     for lexeme in lexemes {
         let covered = {
             let position = tokens.partition_point(|(span, _, _)| span.end() <= lexeme.span.start());
-            tokens.get(position).is_some_and(|(span, _, _)| span.start() < lexeme.span.end())
+            tokens
+                .get(position)
+                .is_some_and(|(span, _, _)| span.start() < lexeme.span.end())
         };
         if covered {
             continue;
@@ -155,14 +190,30 @@ fn line_tokens(
         let kind = match lexeme.token {
             Some(Token::Comment) => Some(TokenKind::Comment),
             Some(Token::String) | Some(Token::UnterminatedString) => Some(TokenKind::String),
-            Some(Token::Number) | Some(Token::HexNumber) | Some(Token::BinaryNumber) => Some(TokenKind::Number),
+            Some(Token::Number) | Some(Token::HexNumber) | Some(Token::BinaryNumber) => {
+                Some(TokenKind::Number)
+            }
             Some(Token::SystemVariable) => Some(TokenKind::SystemVariable),
             Some(Token::Identifier) => {
                 let word = upper(text_of(line, lexeme.span));
                 let is_keyword = keywords::statement_keyword(&word).is_some()
                     || keywords::word_operator(&word).is_some()
                     || is_type_name(&word)
-                    || matches!(word.as_str(), "TO" | "OF" | "DO" | "AS" | "VAR" | "DEFAULT" | "NOT" | "B_NOT" | "NCK" | "CHAN" | "SAVE" | "DISPLOF" | "SBLOF");
+                    || matches!(
+                        word.as_str(),
+                        "TO" | "OF"
+                            | "DO"
+                            | "AS"
+                            | "VAR"
+                            | "DEFAULT"
+                            | "NOT"
+                            | "B_NOT"
+                            | "NCK"
+                            | "CHAN"
+                            | "SAVE"
+                            | "DISPLOF"
+                            | "SBLOF"
+                    );
                 is_keyword.then_some(TokenKind::Keyword)
             }
             _ => None,
@@ -173,19 +224,37 @@ fn line_tokens(
     }
     tokens.extend(extra);
     tokens.sort_by_key(|(span, _, _)| span.start());
-    out.extend(tokens.into_iter().map(|(span, kind, modifiers)| SemanticToken {
-        line: line_index,
-        start: span.start(),
-        length: span.len(),
-        kind,
-        modifiers,
-    }));
+    out.extend(
+        tokens
+            .into_iter()
+            .map(|(span, kind, modifiers)| SemanticToken {
+                line: line_index,
+                start: span.start(),
+                length: span.len(),
+                kind,
+                modifiers,
+            }),
+    );
 }
 
-fn statement_tokens(line: &str, statement: &Statement, table: &SymbolTable, config: &MachineConfig, found: &mut Vec<(Span, TokenKind, u32)>) {
+fn statement_tokens(
+    line: &str,
+    statement: &Statement,
+    table: &SymbolTable,
+    config: &MachineConfig,
+    found: &mut Vec<(Span, TokenKind, u32)>,
+) {
     match statement {
-        Statement::GCode { code, span } => found.push((*span, TokenKind::GCode { group: code.group() }, if code.is_modal() { 0 } else { NON_MODAL })),
-        Statement::UnknownGCode { span, .. } => found.push((*span, TokenKind::GCode { group: 0 }, 0)),
+        Statement::GCode { code, span } => found.push((
+            *span,
+            TokenKind::GCode {
+                group: code.group(),
+            },
+            if code.is_modal() { 0 } else { NON_MODAL },
+        )),
+        Statement::UnknownGCode { span, .. } => {
+            found.push((*span, TokenKind::GCode { group: 0 }, 0))
+        }
         Statement::Address(word) => {
             let kind = match word.kind {
                 AddressKind::Axis => TokenKind::Axis,
@@ -208,20 +277,35 @@ fn statement_tokens(line: &str, statement: &Statement, table: &SymbolTable, conf
                 found.push((span, TokenKind::Number, 0));
             }
         }
-        Statement::Assignment { target, target_span, .. } => {
+        Statement::Assignment {
+            target,
+            target_span,
+            ..
+        } => {
             let (span, kind) = match target {
                 AssignTarget::Variable { .. } => {
                     let span = identifier_prefix(line, *target_span);
                     (span, name_kind(&upper(text_of(line, span)), table, config))
                 }
                 AssignTarget::RParameter(_) => (*target_span, TokenKind::RParameter),
-                AssignTarget::RParameterIndexed(_) => (Span::new(target_span.start(), target_span.start() + 1), TokenKind::RParameter),
-                AssignTarget::SystemVariable { .. } => (identifier_prefix(line, *target_span), TokenKind::SystemVariable),
-                AssignTarget::GGroup { .. } => (Span::new(target_span.start(), target_span.start() + 1), TokenKind::Keyword),
+                AssignTarget::RParameterIndexed(_) => (
+                    Span::new(target_span.start(), target_span.start() + 1),
+                    TokenKind::RParameter,
+                ),
+                AssignTarget::SystemVariable { .. } => (
+                    identifier_prefix(line, *target_span),
+                    TokenKind::SystemVariable,
+                ),
+                AssignTarget::GGroup { .. } => (
+                    Span::new(target_span.start(), target_span.start() + 1),
+                    TokenKind::Keyword,
+                ),
             };
             found.push((span, kind, MODIFICATION));
         }
-        Statement::Structure { span, .. } | Statement::SyncCondition { span, .. } | Statement::Return { span } => {
+        Statement::Structure { span, .. }
+        | Statement::SyncCondition { span, .. }
+        | Statement::Return { span } => {
             found.push((identifier_prefix(line, *span), TokenKind::Keyword, 0))
         }
         Statement::Jump { target, .. } => match target {
@@ -229,11 +313,17 @@ fn statement_tokens(line: &str, statement: &Statement, table: &SymbolTable, conf
             JumpTarget::BlockNumber { span, .. } => found.push((*span, TokenKind::BlockNumber, 0)),
             _ => {}
         },
-        Statement::Call { name: Some(name), .. } => {
+        Statement::Call {
+            name: Some(name), ..
+        } => {
             let text = text_of(line, *name);
             let kind = if text.starts_with('"') {
                 TokenKind::String
-            } else if table.macros.iter().any(|definition| definition.name.eq_ignore_ascii_case(text)) {
+            } else if table
+                .macros
+                .iter()
+                .any(|definition| definition.name.eq_ignore_ascii_case(text))
+            {
                 TokenKind::Macro
             } else {
                 TokenKind::Subprogram
@@ -245,8 +335,12 @@ fn statement_tokens(line: &str, statement: &Statement, table: &SymbolTable, conf
                 found.push((*name, TokenKind::Variable, DECLARATION));
             }
         }
-        Statement::MacroDefinition { name: Some(name), .. } => found.push((*name, TokenKind::Macro, DECLARATION)),
-        Statement::ProcedureHeader { name, parameters, .. } => {
+        Statement::MacroDefinition {
+            name: Some(name), ..
+        } => found.push((*name, TokenKind::Macro, DECLARATION)),
+        Statement::ProcedureHeader {
+            name, parameters, ..
+        } => {
             if let Some(name) = name {
                 found.push((*name, TokenKind::Subprogram, DECLARATION));
             }
@@ -254,7 +348,9 @@ fn statement_tokens(line: &str, statement: &Statement, table: &SymbolTable, conf
                 found.push((*parameter, TokenKind::Parameter, DECLARATION));
             }
         }
-        Statement::ExternDeclaration { name: Some(name), .. } => found.push((*name, TokenKind::Subprogram, 0)),
+        Statement::ExternDeclaration {
+            name: Some(name), ..
+        } => found.push((*name, TokenKind::Subprogram, 0)),
         Statement::Instruction { name, .. } => found.push((*name, TokenKind::Function, 0)),
         _ => {}
     }

@@ -22,7 +22,12 @@ pub struct SignatureHelp {
 }
 
 /// The signature help at byte `byte` of `line_text` in `document`, `None` outside a known call.
-pub fn signature_help(index: &WorkspaceIndex, document: &str, line_text: &str, byte: usize) -> Option<SignatureHelp> {
+pub fn signature_help(
+    index: &WorkspaceIndex,
+    document: &str,
+    line_text: &str,
+    byte: usize,
+) -> Option<SignatureHelp> {
     let before = &line_text[..floor_char_boundary(line_text, byte)];
     let mut lexemes = Vec::new();
     lex_line_into(before, &mut lexemes);
@@ -34,8 +39,13 @@ pub fn signature_help(index: &WorkspaceIndex, document: &str, line_text: &str, b
                 let name = position
                     .checked_sub(1)
                     .map(|previous| &lexemes[previous])
-                    .filter(|previous| previous.token == Some(Token::Identifier) && previous.span.end() == lexeme.span.start())
-                    .map(|previous| before[previous.span.start()..previous.span.end()].to_ascii_uppercase());
+                    .filter(|previous| {
+                        previous.token == Some(Token::Identifier)
+                            && previous.span.end() == lexeme.span.start()
+                    })
+                    .map(|previous| {
+                        before[previous.span.start()..previous.span.end()].to_ascii_uppercase()
+                    });
                 open.push((name, 0));
             }
             Some(Token::RightParen) => {
@@ -55,7 +65,9 @@ pub fn signature_help(index: &WorkspaceIndex, document: &str, line_text: &str, b
         .into_iter()
         .rev()
         .filter_map(|(name, commas)| name.map(|name| (name, commas)))
-        .find_map(|(name, commas)| known_signature(index, document, &name).map(|signature| (name, commas, signature)))?;
+        .find_map(|(name, commas)| {
+            known_signature(index, document, &name).map(|signature| (name, commas, signature))
+        })?;
     let mut label = format!("{name}(");
     let mut ranges = Vec::new();
     let mut parameter_documentation = Vec::new();
@@ -68,7 +80,13 @@ pub fn signature_help(index: &WorkspaceIndex, document: &str, line_text: &str, b
         parameter_documentation.push(meaning);
     }
     label.push(')');
-    Some(SignatureHelp { label, parameters: ranges, parameter_documentation, active_parameter, documentation })
+    Some(SignatureHelp {
+        label,
+        parameters: ranges,
+        parameter_documentation,
+        active_parameter,
+        documentation,
+    })
 }
 
 /// The parameters (text, meaning) and documentation of a called name: a `PROC` of the workspace, an
@@ -83,22 +101,42 @@ fn known_signature(index: &WorkspaceIndex, document: &str, name: &str) -> Option
             .map(|parameter| {
                 let reference = if parameter.by_reference { "VAR " } else { "" };
                 let dimensions = parameter.dimensions.clone().unwrap_or_default();
-                (format!("{reference}{} {}{dimensions}", parameter.type_name, parameter.name).trim().to_string(), None)
+                (
+                    format!(
+                        "{reference}{} {}{dimensions}",
+                        parameter.type_name, parameter.name
+                    )
+                    .trim()
+                    .to_string(),
+                    None,
+                )
             })
             .collect();
         return Some((parameters, procedure.documentation.clone()));
     }
-    let declaration = index
-        .document(document)
-        .and_then(|indexed| indexed.symbols.externs.iter().find(|declaration| declaration.name == name));
+    let declaration = index.document(document).and_then(|indexed| {
+        indexed
+            .symbols
+            .externs
+            .iter()
+            .find(|declaration| declaration.name == name)
+    });
     if let Some(types) = declaration.and_then(|declaration| declaration.parameter_types.clone()) {
-        return Some((types.into_iter().map(|written| (written, None)).collect(), None));
+        return Some((
+            types.into_iter().map(|written| (written, None)).collect(),
+            None,
+        ));
     }
     let cycle = cycle(name)?;
     let parameters = cycle
         .parameters
         .iter()
-        .map(|parameter| (parameter.to_string(), parameter_meaning(parameter).map(str::to_string)))
+        .map(|parameter| {
+            (
+                parameter.to_string(),
+                parameter_meaning(parameter).map(str::to_string),
+            )
+        })
         .collect();
     Some((parameters, Some(cycle.summary.to_string())))
 }

@@ -134,8 +134,14 @@ pub struct CallSite {
 /// Where a jump goes.
 #[derive(Debug, Clone, PartialEq)]
 pub enum JumpDestination {
-    Label { name: String, span: Span },
-    BlockNumber { value: u64, span: Span },
+    Label {
+        name: String,
+        span: Span,
+    },
+    BlockNumber {
+        value: u64,
+        span: Span,
+    },
     /// A target computed at run time (a string variable): not resolved.
     Computed,
     /// `GOTOS`, or a jump without target.
@@ -266,7 +272,13 @@ impl SymbolTable {
         SymbolTable::build(&crate::analysis::document::TextLines::new(text), config)
     }
 
-    fn add_block(&mut self, line_index: usize, line: &str, block: &Block, lexemes: &mut Vec<Lexeme>) {
+    fn add_block(
+        &mut self,
+        line_index: usize,
+        line: &str,
+        block: &Block,
+        lexemes: &mut Vec<Lexeme>,
+    ) {
         if let Some(number) = block.number {
             self.block_numbers.push(BlockNumberEntry {
                 value: number.value,
@@ -285,7 +297,14 @@ impl SymbolTable {
         let mut tool_words: Vec<Span> = Vec::new();
         let mut in_case = false;
         for statement in &block.statements {
-            self.add_statement(line_index, line, block, statement, &mut tool_words, &mut in_case, lexemes);
+            self.add_statement(
+                line_index,
+                line,
+                statement,
+                &mut tool_words,
+                &mut in_case,
+                lexemes,
+            );
         }
         for expr in &block.exprs {
             match &expr.kind {
@@ -330,12 +349,10 @@ impl SymbolTable {
         }
     }
 
-    #[allow(clippy::too_many_arguments)]
     fn add_statement(
         &mut self,
         line_index: usize,
         line: &str,
-        block: &Block,
         statement: &Statement,
         tool_words: &mut Vec<Span>,
         in_case: &mut bool,
@@ -401,7 +418,9 @@ impl SymbolTable {
                     span: keyword_span,
                 });
             }
-            Statement::Jump { kind, target, span, .. } => {
+            Statement::Jump {
+                kind, target, span, ..
+            } => {
                 let keyword_span = jump_keyword_span(line, *span);
                 let destination = match target {
                     JumpTarget::Label(span) => JumpDestination::Label {
@@ -429,13 +448,21 @@ impl SymbolTable {
                 args,
                 span,
             } => {
-                let has_parentheses = line.as_bytes()[name_span.end().min(line.len())..span.end().min(line.len())]
-                    .iter()
-                    .any(|byte| *byte == b'(');
+                let has_parentheses = line.as_bytes()
+                    [name_span.end().min(line.len())..span.end().min(line.len())]
+                    .contains(&b'(');
                 let argument_count = has_parentheses.then_some(args.len());
                 let (name, style, name_span) = match kind {
-                    CallKind::Named => (upper(text_of(line, *name_span)), CallStyle::Named, *name_span),
-                    CallKind::Modal => (upper(text_of(line, *name_span)), CallStyle::Modal, *name_span),
+                    CallKind::Named => (
+                        upper(text_of(line, *name_span)),
+                        CallStyle::Named,
+                        *name_span,
+                    ),
+                    CallKind::Modal => (
+                        upper(text_of(line, *name_span)),
+                        CallStyle::Modal,
+                        *name_span,
+                    ),
                     CallKind::Indirect => match indirect_program_name(line, *name_span) {
                         Some((name, span)) => (name, CallStyle::Indirect, span),
                         None => return,
@@ -476,14 +503,16 @@ impl SymbolTable {
                     span: *name,
                     parameters: described
                         .into_iter()
-                        .map(|(name_span, type_name, by_reference, dimensions)| Parameter {
-                            name: upper(text_of(line, name_span)),
-                            type_name,
-                            by_reference,
-                            dimensions,
-                            line: line_index,
-                            span: name_span,
-                        })
+                        .map(
+                            |(name_span, type_name, by_reference, dimensions)| Parameter {
+                                name: upper(text_of(line, name_span)),
+                                type_name,
+                                by_reference,
+                                dimensions,
+                                line: line_index,
+                                span: name_span,
+                            },
+                        )
                         .collect(),
                     has_parameter_list,
                     documentation: None,
@@ -500,7 +529,6 @@ impl SymbolTable {
             }),
             _ => {}
         }
-        let _ = block;
     }
 
     fn add_definitions(
@@ -565,7 +593,12 @@ fn bracket_text(text: &str, lexemes: &[Lexeme], index: usize) -> Option<String> 
                 depth -= 1;
                 if depth == 0 {
                     let span = Span::new(first.span.start(), lexeme.span.end());
-                    return Some(text_of(text, span).chars().filter(|c| !c.is_whitespace()).collect());
+                    return Some(
+                        text_of(text, span)
+                            .chars()
+                            .filter(|c| !c.is_whitespace())
+                            .collect(),
+                    );
                 }
             }
             _ => {}
@@ -608,7 +641,10 @@ fn indirect_program_name(line: &str, span: Span) -> Option<(String, Span)> {
     };
     let segment_start = content.rfind('/').map_or(0, |position| position + 1);
     let segment = &content[segment_start..];
-    let (name_offset, name) = match segment.strip_prefix("_N_").or_else(|| segment.strip_prefix("_n_")) {
+    let (name_offset, name) = match segment
+        .strip_prefix("_N_")
+        .or_else(|| segment.strip_prefix("_n_"))
+    {
         Some(rest) => {
             let end = rest.rfind('_').filter(|position| *position > 0)?;
             (3, &rest[..end])
@@ -622,6 +658,9 @@ fn indirect_program_name(line: &str, span: Span) -> Option<(String, Span)> {
     Some((upper(name), Span::new(start, start + name.len())))
 }
 
+/// A parameter of a `PROC` header as read from its tokens: name span, type, `VAR`, dimensions.
+type DescribedParameter = (Span, String, bool, Option<String>);
+
 /// The parameters of a `PROC` header: (name span, type, VAR, dimensions) per parameter name the
 /// parser found, and whether there is a parameter list.
 fn describe_parameters(
@@ -629,7 +668,7 @@ fn describe_parameters(
     span: Span,
     parameters: &[Span],
     lexemes: &mut Vec<Lexeme>,
-) -> (Vec<(Span, String, bool, Option<String>)>, bool) {
+) -> (Vec<DescribedParameter>, bool) {
     let statement = text_of(line, span);
     lex_line_into(statement, lexemes);
     let offset = span.start();
@@ -698,7 +737,10 @@ fn extern_parameter_types(line: &str, name_end: usize, end: usize) -> Option<Vec
 }
 
 fn normalise_spaces(text: &str) -> String {
-    text.split_whitespace().collect::<Vec<_>>().join(" ").to_ascii_uppercase()
+    text.split_whitespace()
+        .collect::<Vec<_>>()
+        .join(" ")
+        .to_ascii_uppercase()
 }
 
 /// Whether a block executes something: declarations (`DEF`, `DEFINE`, `PROC`, `EXTERN`, access
@@ -720,7 +762,11 @@ pub fn is_executable(line: &str, block: &Block) -> bool {
 /// The class of a line that holds only a comment, `None` for other lines.
 fn classify_comment_line(line: &str, block: &Block) -> Option<CommentLine> {
     let comment = block.comment?;
-    if !block.statements.is_empty() || block.number.is_some() || block.label.is_some() || block.skip.is_some() {
+    if !block.statements.is_empty()
+        || block.number.is_some()
+        || block.label.is_some()
+        || block.skip.is_some()
+    {
         return None;
     }
     if !line[..comment.start()].trim().is_empty() {
@@ -730,10 +776,18 @@ fn classify_comment_line(line: &str, block: &Block) -> Option<CommentLine> {
     if text.is_empty() {
         return Some(CommentLine::Empty);
     }
-    let leading_rule = text.chars().take_while(|c| RULE_CHARACTERS.contains(c)).count();
-    let title = text.trim_matches(|c: char| RULE_CHARACTERS.contains(&c) || c.is_whitespace() || c == '\'');
+    let leading_rule = text
+        .chars()
+        .take_while(|c| RULE_CHARACTERS.contains(c))
+        .count();
+    let title =
+        text.trim_matches(|c: char| RULE_CHARACTERS.contains(&c) || c.is_whitespace() || c == '\'');
     if !title.chars().any(char::is_alphabetic) {
-        return (leading_rule >= 5 || text.chars().all(|c| RULE_CHARACTERS.contains(&c) || c.is_whitespace() || c == '\'') && leading_rule >= 3)
+        return (leading_rule >= 5
+            || text
+                .chars()
+                .all(|c| RULE_CHARACTERS.contains(&c) || c.is_whitespace() || c == '\'')
+                && leading_rule >= 3)
             .then_some(CommentLine::Rule);
     }
     if leading_rule >= 3 {
@@ -756,7 +810,11 @@ fn find_sections(comment_lines: &[(usize, CommentLine)]) -> Vec<CommentSection> 
         let line = *line;
         match class {
             CommentLine::FramedTitle(title) => sections.push(CommentSection {
-                line: if line > 0 && class_at(line - 1) == Some(&CommentLine::Rule) { line - 1 } else { line },
+                line: if line > 0 && class_at(line - 1) == Some(&CommentLine::Rule) {
+                    line - 1
+                } else {
+                    line
+                },
                 title_line: line,
                 title: title.clone(),
             }),
@@ -787,7 +845,11 @@ fn find_sections(comment_lines: &[(usize, CommentLine)]) -> Vec<CommentSection> 
 fn documentation_above(comment_lines: &[(usize, CommentLine)], line: usize) -> Option<String> {
     let mut texts = Vec::new();
     let mut expected = line.checked_sub(1)?;
-    for (index, class) in comment_lines.iter().rev().skip_while(|(index, _)| *index >= line) {
+    for (index, class) in comment_lines
+        .iter()
+        .rev()
+        .skip_while(|(index, _)| *index >= line)
+    {
         if *index != expected {
             break;
         }

@@ -37,19 +37,24 @@ pub struct IndexedDocument {
 
 /// The program name and kind of a file name or path: `PART2.SPF` and `_N_PART2_SPF` are `PART2`.
 pub fn program_name_and_kind(file_name: &str) -> (String, FileKind) {
-    let base = file_name
-        .rsplit(['/', '\\'])
-        .next()
-        .unwrap_or(file_name);
+    let base = file_name.rsplit(['/', '\\']).next().unwrap_or(file_name);
     let (stem, extension) = match base.rfind('.') {
         Some(dot) if dot > 0 => (&base[..dot], &base[dot + 1..]),
         _ => (base, ""),
     };
     let upper_stem = stem.to_ascii_uppercase();
     let (stem, extension) = match upper_stem.strip_prefix("_N_") {
-        Some(rest) if extension.is_empty() || rest.ends_with("_SPF") || rest.ends_with("_MPF") || rest.ends_with("_DEF") => {
+        Some(rest)
+            if extension.is_empty()
+                || rest.ends_with("_SPF")
+                || rest.ends_with("_MPF")
+                || rest.ends_with("_DEF") =>
+        {
             match rest.rfind('_') {
-                Some(underscore) if underscore > 0 => (rest[..underscore].to_string(), rest[underscore + 1..].to_string()),
+                Some(underscore) if underscore > 0 => (
+                    rest[..underscore].to_string(),
+                    rest[underscore + 1..].to_string(),
+                ),
                 _ => (rest.to_string(), extension.to_ascii_uppercase()),
             }
         }
@@ -80,7 +85,13 @@ impl WorkspaceIndex {
 
     /// Adds or replaces a document, collecting its symbol table. `file_name` is its path or URI, from
     /// which the program name and kind are taken.
-    pub fn update(&mut self, id: DocumentId, file_name: &str, source: &dyn LineSource, config: &MachineConfig) {
+    pub fn update(
+        &mut self,
+        id: DocumentId,
+        file_name: &str,
+        source: &dyn LineSource,
+        config: &MachineConfig,
+    ) {
         let symbols = Arc::new(SymbolTable::build(source, config));
         self.insert(id, file_name, symbols);
     }
@@ -123,7 +134,10 @@ impl WorkspaceIndex {
 
     /// The documents that define the program `name` (upper case): by file name (programs, not
     /// definition files), or by a `PROC` header of that name.
-    pub fn programs_named<'a>(&'a self, name: &'a str) -> impl Iterator<Item = &'a IndexedDocument> + 'a {
+    pub fn programs_named<'a>(
+        &'a self,
+        name: &'a str,
+    ) -> impl Iterator<Item = &'a IndexedDocument> + 'a {
         self.documents.values().filter(move |document| {
             (document.kind != FileKind::Definitions && document.program_name == name)
                 || document
@@ -135,7 +149,10 @@ impl WorkspaceIndex {
     }
 
     /// The `PROC` header of the program `name`, if an indexed document has one.
-    pub fn procedure<'a>(&'a self, name: &'a str) -> Option<(&'a IndexedDocument, &'a ProcedureDefinition)> {
+    pub fn procedure<'a>(
+        &'a self,
+        name: &'a str,
+    ) -> Option<(&'a IndexedDocument, &'a ProcedureDefinition)> {
         self.programs_named(name).find_map(|document| {
             document
                 .symbols
@@ -147,7 +164,10 @@ impl WorkspaceIndex {
     }
 
     /// Global variables (`DEF NCK|CHAN ...` or any `DEF` of a `.DEF` file) named `name`.
-    pub fn global_variables<'a>(&'a self, name: &'a str) -> impl Iterator<Item = (&'a IndexedDocument, &'a VariableDefinition)> + 'a {
+    pub fn global_variables<'a>(
+        &'a self,
+        name: &'a str,
+    ) -> impl Iterator<Item = (&'a IndexedDocument, &'a VariableDefinition)> + 'a {
         self.documents.values().flat_map(move |document| {
             document
                 .symbols
@@ -155,14 +175,18 @@ impl WorkspaceIndex {
                 .iter()
                 .filter(move |variable| {
                     variable.name == name
-                        && (document.kind == FileKind::Definitions || variable.global_attribute.is_some())
+                        && (document.kind == FileKind::Definitions
+                            || variable.global_attribute.is_some())
                 })
                 .map(move |variable| (document, variable))
         })
     }
 
     /// Macros of `.DEF` files named `name`.
-    pub fn global_macros<'a>(&'a self, name: &'a str) -> impl Iterator<Item = (&'a IndexedDocument, &'a MacroDefinition)> + 'a {
+    pub fn global_macros<'a>(
+        &'a self,
+        name: &'a str,
+    ) -> impl Iterator<Item = (&'a IndexedDocument, &'a MacroDefinition)> + 'a {
         self.documents
             .values()
             .filter(|document| document.kind == FileKind::Definitions)
@@ -182,7 +206,11 @@ impl WorkspaceIndex {
     pub fn main_program_defines(&self, name: &str) -> bool {
         self.documents.values().any(|document| {
             document.kind == FileKind::MainProgram
-                && document.symbols.variables.iter().any(|variable| variable.name == name)
+                && document
+                    .symbols
+                    .variables
+                    .iter()
+                    .any(|variable| variable.name == name)
         })
     }
 }
@@ -193,10 +221,22 @@ mod tests {
 
     #[test]
     fn program_names_come_from_stems_and_control_file_names() {
-        assert_eq!(program_name_and_kind("/a/b/part2.spf"), ("PART2".to_string(), FileKind::Subprogram));
-        assert_eq!(program_name_and_kind("C:\\x\\MAIN.MPF"), ("MAIN".to_string(), FileKind::MainProgram));
-        assert_eq!(program_name_and_kind("_N_CUST_800_SPF"), ("CUST_800".to_string(), FileKind::Subprogram));
-        assert_eq!(program_name_and_kind("GUD.DEF"), ("GUD".to_string(), FileKind::Definitions));
+        assert_eq!(
+            program_name_and_kind("/a/b/part2.spf"),
+            ("PART2".to_string(), FileKind::Subprogram)
+        );
+        assert_eq!(
+            program_name_and_kind("C:\\x\\MAIN.MPF"),
+            ("MAIN".to_string(), FileKind::MainProgram)
+        );
+        assert_eq!(
+            program_name_and_kind("_N_CUST_800_SPF"),
+            ("CUST_800".to_string(), FileKind::Subprogram)
+        );
+        assert_eq!(
+            program_name_and_kind("GUD.DEF"),
+            ("GUD".to_string(), FileKind::Definitions)
+        );
         assert_eq!(program_name_and_kind("notes.txt").1, FileKind::Other);
     }
 }

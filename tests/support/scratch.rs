@@ -13,7 +13,10 @@ pub struct Scratch {
 
 impl Scratch {
     pub fn new(name: &str) -> Scratch {
-        let path = std::env::temp_dir().join(format!("sinumerik-lsp-rewrite-{}-{name}", std::process::id()));
+        let path = std::env::temp_dir().join(format!(
+            "sinumerik-lsp-rewrite-{}-{name}",
+            std::process::id()
+        ));
         let _ = fs::remove_dir_all(&path);
         fs::create_dir_all(&path).unwrap();
         fs::write(path.join("sinumerik.toml"), "").unwrap();
