@@ -2,7 +2,8 @@
 //! separated by one blank (`G0X10` becomes `G0 X10`), runs of blanks inside a statement shrink to one,
 //! blanks after `(`/`[` and before `)`/`]`/`,` and at the end of a line go, names and addresses are
 //! written in upper case. Comments and strings stay byte for byte, a trailing comment keeps its
-//! column where the code still fits, leading indentation and line ends are kept.
+//! column where the code still fits; leading indentation, the blanks after a block number (which
+//! often indent the block) and line ends are kept.
 //!
 //! Every formatted line is lexed and parsed again and compared with the original (same tokens, same
 //! parse, same findings); a line that would compare differently is left exactly as it was.
@@ -109,7 +110,8 @@ impl LineFormatter {
         }
         lex_line_into(line, &mut self.lexemes);
         let starts = element_starts(&self.block);
-        let formatted = respace(line, &self.lexemes, &starts, self.options);
+        let number_end = self.block.number.map(|number| number.span.end());
+        let formatted = respace(line, &self.lexemes, &starts, number_end, self.options);
         if formatted == line {
             return None;
         }
@@ -176,6 +178,7 @@ fn respace(
     line: &str,
     lexemes: &[Lexeme],
     element_starts: &[usize],
+    number_end: Option<usize>,
     options: FormatOptions,
 ) -> String {
     let Some(first) = lexemes.first() else {
@@ -205,6 +208,10 @@ fn respace(
                         out.extend(std::iter::repeat_n(' ', padding));
                     }
                 }
+            } else if is_element_start && number_end == Some(previous.span.end()) && !gap.is_empty()
+            {
+                // Blanks after the block number indent the block (often by its nesting): kept.
+                out.push_str(gap);
             } else if is_element_start {
                 out.push(' ');
             } else if !gap.is_empty() {
@@ -342,5 +349,51 @@ fn expr_tag(kind: &ExprKind) -> u64 {
         ExprKind::Parenthesized(_) => 8,
         ExprKind::List(items) => 9 + 1000 * items.len() as u64,
         ExprKind::Error => 10,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn formatted(text: &str) -> String {
+        format_text(text, &MachineConfig::default(), FormatOptions::default())
+    }
+
+    #[test]
+    fn words_are_separated_and_upper_cased() {
+        assert_eq!(formatted("n10 g0x10y5 t0d0\n"), "N10 G0 X10 Y5 T0 D0\n");
+        assert_eq!(formatted("msg( \"a;b  c\" , 1 )\n"), "MSG(\"a;b  c\", 1)\n");
+        assert_eq!(
+            formatted("if r1  ==  1   gotof lbl1\n"),
+            "IF R1 == 1 GOTOF LBL1\n"
+        );
+        assert_eq!(formatted("call \"part\"\n"), "CALL \"part\"\n");
+    }
+
+    #[test]
+    fn comments_keep_their_column_and_bytes() {
+        assert_eq!(
+            formatted("g0x1      ; Änderung  \r\n"),
+            "G0 X1     ; Änderung  \r\n"
+        );
+        assert_eq!(formatted("g0x1;c\n"), "G0 X1;c\n");
+        assert_eq!(formatted("  ; only a comment\n"), "  ; only a comment\n");
+    }
+
+    #[test]
+    fn indentation_and_blanks_after_the_block_number_are_kept() {
+        assert_eq!(
+            formatted("N10    if r1 > 0\n  g1 x1\n"),
+            "N10    IF R1 > 0\n  G1 X1\n"
+        );
+        assert_eq!(formatted("   \n"), "\n");
+        assert_eq!(formatted("/1n10g0x1\n"), "/1 N10 G0 X1\n");
+    }
+
+    #[test]
+    fn headers_and_unchanged_lines_are_left_alone() {
+        let text = "%_N_part_MPF\nN10 G0 X1\n";
+        assert_eq!(formatted(text), text);
     }
 }

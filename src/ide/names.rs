@@ -109,7 +109,7 @@ mod tests {
         ] {
             assert!(reserved_reason(name, &config).is_some(), "{name}");
         }
-        for name in ["START", "_LOOP", "PART2", "COUNTER"] {
+        for name in ["MARK1", "_LOOP", "PART2", "COUNTER"] {
             assert_eq!(reserved_reason(name, &config), None, "{name}");
         }
         assert_eq!(

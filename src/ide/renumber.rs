@@ -234,3 +234,47 @@ fn line_layouts(
     });
     layouts
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn renumbered(text: &str, mode: NumberingMode) -> String {
+        let options = RenumberOptions {
+            start: 1,
+            step: 1,
+            mode,
+        };
+        renumber_text(text, &MachineConfig::default(), options).unwrap()
+    }
+
+    #[test]
+    fn main_blocks_keep_their_colon_and_skip_markers_come_first() {
+        assert_eq!(
+            renumbered(":10 G0 X1\nN20 G1 X2\n", NumberingMode::Keep),
+            ":1 G0 X1\nN2 G1 X2\n"
+        );
+        assert_eq!(
+            renumbered("/G0 X1\n/2 G1 X2\n; comment\n\nLBL:\n", NumberingMode::All),
+            "/N1 G0 X1\n/2 N2 G1 X2\n; comment\n\nN3 LBL:\n"
+        );
+    }
+
+    #[test]
+    fn a_jump_to_a_main_block_follows_it() {
+        assert_eq!(
+            renumbered("N5 GOTOF N50\n:50 M30\n", NumberingMode::Keep),
+            "N1 GOTOF N2\n:2 M30\n"
+        );
+    }
+
+    #[test]
+    fn a_step_of_zero_is_refused() {
+        let options = RenumberOptions {
+            start: 1,
+            step: 0,
+            mode: NumberingMode::Keep,
+        };
+        assert!(renumber_text("N1 G0\n", &MachineConfig::default(), options).is_err());
+    }
+}
