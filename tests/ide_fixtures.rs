@@ -12,7 +12,7 @@ use sinumerik_lsp::analysis::document::TextLines;
 use sinumerik_lsp::config::MachineConfig;
 use sinumerik_lsp::ide::completion::completion;
 use sinumerik_lsp::ide::cross_file_diagnostics::cross_file_diagnostics;
-use sinumerik_lsp::ide::navigation::{definition, references, rename};
+use sinumerik_lsp::ide::navigation::{definition, references, rename, workspace_symbols};
 use sinumerik_lsp::ide::outline::{
     document_highlights, document_symbols, folding_ranges, OutlineItem,
 };
@@ -526,6 +526,35 @@ fn workspace_diagnostics() {
         }
         if out.is_empty() {
             out.push_str("(none)\n");
+        }
+        out
+    });
+}
+
+#[test]
+fn workspace_symbol_search() {
+    check_feature("workspace_symbols", |fixture, config| {
+        let index = fixture.index(config);
+        // The query is the word under the cursor's line, after `;;; QUERY` is not needed: the cursor
+        // line holds it as a comment `; query: TEXT`.
+        let query = fixture
+            .cursor_line_text()
+            .split("query:")
+            .nth(1)
+            .unwrap_or("")
+            .trim()
+            .to_string();
+        let mut found = workspace_symbols(&index, &query);
+        found.sort_by(|left, right| {
+            (&left.2.document, left.2.line, &left.0).cmp(&(
+                &right.2.document,
+                right.2.line,
+                &right.0,
+            ))
+        });
+        let mut out = format!("query {query:?}\n");
+        for (name, kind, location) in &found {
+            let _ = writeln!(out, "{kind:?} {name} {}", show_location(fixture, location));
         }
         out
     });
