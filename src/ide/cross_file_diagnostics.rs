@@ -10,10 +10,10 @@ use crate::ide::cycles::is_control_cycle;
 use crate::ide::jumps::{resolve_jump, JumpResolution};
 use crate::ide::names::reserved_reason;
 use crate::ide::navigation::{jump_keyword, resolve_call, resolve_name, Symbol};
-use crate::ide::symbols::{JumpDestination, SymbolTable};
+use crate::ide::symbols::{JumpDestination, ProcedureDefinition, SymbolTable};
 use crate::ide::workspace::{FileKind, IndexedDocument, WorkspaceIndex};
 use crate::syntax::ast::JumpKind;
-use std::collections::HashSet;
+use std::collections::{HashMap, HashSet};
 
 /// The W3xx findings of one indexed document, with the configured severities, sorted by line.
 pub fn cross_file_diagnostics(
@@ -44,32 +44,33 @@ fn push(out: &mut Vec<LineDiagnostic>, line: usize, diagnostic: Diagnostic) {
 
 /// W304 and W305: every jump to a label or block number must reach it in its direction.
 fn jump_findings(table: &SymbolTable, out: &mut Vec<LineDiagnostic>) {
+    let label_lines = table.label_lines();
+    // A CAM program has a number on every block and rarely a jump: the map is built only when needed.
+    let any_block_number_jump = table
+        .jumps
+        .iter()
+        .any(|jump| matches!(jump.destination, JumpDestination::BlockNumber { .. }));
+    let block_number_lines = if any_block_number_jump {
+        table.block_number_lines()
+    } else {
+        HashMap::new()
+    };
     for jump in &table.jumps {
-        let (lines, span, shown): (Vec<usize>, Span, String) = match &jump.destination {
+        let (lines, span, shown): (&[usize], Span, String) = match &jump.destination {
             JumpDestination::Label { name, span } => (
-                table
-                    .labels
-                    .iter()
-                    .filter(|label| &label.name == name)
-                    .map(|label| label.line)
-                    .collect(),
+                label_lines.get(name.as_str()).map_or(&[], Vec::as_slice),
                 *span,
                 format!("label `{name}`"),
             ),
             JumpDestination::BlockNumber { value, span } => (
-                table
-                    .block_numbers
-                    .iter()
-                    .filter(|number| number.value == *value)
-                    .map(|number| number.line)
-                    .collect(),
+                block_number_lines.get(value).map_or(&[], Vec::as_slice),
                 *span,
                 format!("block number N{value}"),
             ),
             JumpDestination::Computed | JumpDestination::None => continue,
         };
         let keyword = jump_keyword(jump.kind);
-        match resolve_jump(jump.kind, jump.line, &lines) {
+        match resolve_jump(jump.kind, jump.line, lines) {
             JumpResolution::Found(_) => {}
             JumpResolution::Missing if jump.kind == JumpKind::Gotoc => {}
             JumpResolution::Missing => push(
@@ -157,15 +158,24 @@ fn call_findings(
     out: &mut Vec<LineDiagnostic>,
 ) {
     let table = &document.symbols;
+    // What each called name resolves to, looked up once per name: (macro, PROC header, a program).
+    type Resolution<'a> = (bool, Option<&'a ProcedureDefinition>, bool);
+    let mut resolutions: HashMap<&str, Resolution<'_>> = HashMap::new();
     for call in &table.calls {
-        if matches!(
-            resolve_call(index, document, &call.name),
-            Symbol::Macro { .. }
-        ) {
+        let (is_macro, procedure, known_program) =
+            *resolutions.entry(call.name.as_str()).or_insert_with(|| {
+                (
+                    matches!(
+                        resolve_call(index, document, &call.name),
+                        Symbol::Macro { .. }
+                    ),
+                    index.procedure(&call.name).map(|(_, procedure)| procedure),
+                    index.programs_named(&call.name).next().is_some(),
+                )
+            });
+        if is_macro {
             continue;
         }
-        let procedure = index.procedure(&call.name).map(|(_, procedure)| procedure);
-        let known_program = index.programs_named(&call.name).next().is_some();
         if !known_program && index.is_complete() && !is_control_cycle(&call.name) {
             push(
                 out,
@@ -263,13 +273,19 @@ fn undefined_variable_findings(
         return;
     }
     let table = &document.symbols;
-    let mut reported = HashSet::new();
+    let labels: HashSet<&str> = table
+        .labels
+        .iter()
+        .map(|label| label.name.as_str())
+        .collect();
+    // Each name is checked once: the first use of an undefined name is reported.
+    let mut checked: HashSet<&str> = HashSet::new();
     for name_use in &table.name_uses {
         let name = name_use.name.as_str();
         let looks_like_address = name.len() <= 1
             || (name.as_bytes()[0].is_ascii_alphabetic()
                 && name.as_bytes()[1..].iter().all(u8::is_ascii_digit));
-        if looks_like_address || reported.contains(name) {
+        if looks_like_address || !checked.insert(name) {
             continue;
         }
         if !matches!(
@@ -279,12 +295,11 @@ fn undefined_variable_findings(
             continue;
         }
         if reserved_reason(name, config).is_some()
-            || table.labels.iter().any(|label| label.name == name)
+            || labels.contains(name)
             || index.main_program_defines(name)
         {
             continue;
         }
-        reported.insert(name.to_string());
         push(
             out,
             name_use.line,

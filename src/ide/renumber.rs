@@ -93,13 +93,7 @@ pub fn renumber(
     let layouts = line_layouts(source, config, &table);
 
     // Which numbered lines a jump reaches, and jumps whose target is missing.
-    let mut lines_by_value: HashMap<u64, Vec<usize>> = HashMap::new();
-    for entry in &table.block_numbers {
-        lines_by_value
-            .entry(entry.value)
-            .or_default()
-            .push(entry.line);
-    }
+    let lines_by_value = table.block_number_lines();
     let mut jump_targets: Vec<(usize, Span, Option<usize>, u64)> = Vec::new();
     for jump in &table.jumps {
         if let JumpDestination::BlockNumber { value, span } = &jump.destination {

@@ -14,6 +14,7 @@ use crate::syntax::ast::{
 };
 use crate::syntax::lexer::{lex_line_into, Lexeme, Token};
 use crate::syntax::{LineParser, SyntaxContext};
+use std::collections::HashMap;
 
 /// `NAME:` at the start of a block.
 #[derive(Debug, Clone, PartialEq)]
@@ -265,6 +266,27 @@ impl SymbolTable {
             procedure.documentation = documentation_above(&comment_lines, procedure.line);
         }
         table
+    }
+
+    /// The lines of each label, in ascending order, for resolving many jumps at once.
+    pub fn label_lines(&self) -> HashMap<&str, Vec<usize>> {
+        let mut lines: HashMap<&str, Vec<usize>> = HashMap::new();
+        for label in &self.labels {
+            lines
+                .entry(label.name.as_str())
+                .or_default()
+                .push(label.line);
+        }
+        lines
+    }
+
+    /// The lines of each block number, in ascending order.
+    pub fn block_number_lines(&self) -> HashMap<u64, Vec<usize>> {
+        let mut lines: HashMap<u64, Vec<usize>> = HashMap::new();
+        for entry in &self.block_numbers {
+            lines.entry(entry.value).or_default().push(entry.line);
+        }
+        lines
     }
 
     /// Collects the symbol table of a whole text.
