@@ -12,6 +12,7 @@ use sinumerik_lsp::analysis::document::TextLines;
 use sinumerik_lsp::config::MachineConfig;
 use sinumerik_lsp::ide::completion::completion;
 use sinumerik_lsp::ide::cross_file_diagnostics::cross_file_diagnostics;
+use sinumerik_lsp::ide::documentation::documentation_at;
 use sinumerik_lsp::ide::navigation::{definition, references, rename, workspace_symbols};
 use sinumerik_lsp::ide::outline::{
     document_highlights, document_symbols, folding_ranges, OutlineItem,
@@ -528,6 +529,28 @@ fn workspace_diagnostics() {
             out.push_str("(none)\n");
         }
         out
+    });
+}
+
+#[test]
+fn hover_documentation() {
+    check_feature("documentation", |fixture, config| {
+        let index = fixture.index(config);
+        match documentation_at(
+            &index,
+            &fixture.cursor_file,
+            fixture.cursor_line_text(),
+            fixture.cursor_line,
+            fixture.cursor_byte,
+        ) {
+            None => "(none)\n".to_string(),
+            Some(doc) => format!(
+                "{:?}\n{}\n{}\n",
+                &fixture.cursor_line_text()[doc.span.start()..doc.span.end()],
+                doc.title,
+                doc.text
+            ),
+        }
     });
 }
 

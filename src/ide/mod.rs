@@ -11,7 +11,7 @@
 //! - `symbols.rs`: the symbol table of one document, collected from the parser's blocks.
 //! - `workspace.rs`: the index over many documents; `navigation.rs`: definition, references, rename.
 //! - `completion.rs`, `signature_help.rs`, `language_docs.rs` (the one table of descriptions shared
-//!   with hover), `cycles.rs` (standard cycle parameter lists).
+//!   with hover), `cycles.rs` (standard cycle parameter lists), `documentation.rs` (hover texts).
 //! - `outline.rs` (document symbols, folding, highlights), `semantic_tokens.rs`.
 //! - `cross_file_diagnostics.rs`: W3xx findings that need the symbol table or the workspace.
 //! - `renumber.rs`, `format.rs`: whole-document rewrites returned as text.
@@ -19,6 +19,7 @@
 pub mod completion;
 pub mod cross_file_diagnostics;
 pub mod cycles;
+pub mod documentation;
 pub mod format;
 pub mod jumps;
 pub mod language_docs;
