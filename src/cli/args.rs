@@ -14,6 +14,26 @@ pub(crate) enum Command {
     Version,
     Check(CheckOptions),
     Preview(PreviewOptions),
+    Fmt(FmtOptions),
+    Renumber(RenumberCliOptions),
+}
+
+/// The options of `fmt`.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub(crate) struct FmtOptions {
+    /// Report the files that would change (exit 1) instead of writing them.
+    pub check: bool,
+    pub config_path: Option<PathBuf>,
+    pub paths: Vec<PathBuf>,
+}
+
+/// The options of `renumber`.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub(crate) struct RenumberCliOptions {
+    pub renumber: crate::ide::renumber::RenumberOptions,
+    pub check: bool,
+    pub config_path: Option<PathBuf>,
+    pub paths: Vec<PathBuf>,
 }
 
 /// The options of `preview`.
@@ -80,8 +100,10 @@ pub(crate) fn parse_args(args: impl IntoIterator<Item = OsString>) -> Result<Com
         Value(command) if command == "serve" => parse_serve(&mut parser),
         Value(command) if command == "check" => parse_check(&mut parser),
         Value(command) if command == "preview" => parse_preview(&mut parser),
+        Value(command) if command == "fmt" => parse_fmt(&mut parser),
+        Value(command) if command == "renumber" => parse_renumber(&mut parser),
         Value(command) => Err(UsageError(format!(
-            "unknown command {:?} (the commands are `serve`, `check` and `preview`)",
+            "unknown command {:?} (the commands are `serve`, `check`, `preview`, `fmt` and `renumber`)",
             command.to_string_lossy()
         ))),
         other => Err(other.unexpected().into()),
@@ -194,6 +216,91 @@ fn parse_preview(parser: &mut lexopt::Parser) -> Result<Command, UsageError> {
     }
 }
 
+fn parse_fmt(parser: &mut lexopt::Parser) -> Result<Command, UsageError> {
+    let mut options = FmtOptions {
+        check: false,
+        config_path: None,
+        paths: Vec::new(),
+    };
+    while let Some(arg) = parser.next()? {
+        match arg {
+            Short('h') | Long("help") => return Ok(Command::Help),
+            Long("check") => options.check = true,
+            Long("config") => options.config_path = Some(PathBuf::from(parser.value()?)),
+            Value(path) => options.paths.push(PathBuf::from(path)),
+            other => return Err(other.unexpected().into()),
+        }
+    }
+    if options.paths.is_empty() {
+        return Err(UsageError(
+            "`fmt` needs at least one file or folder".to_string(),
+        ));
+    }
+    Ok(Command::Fmt(options))
+}
+
+fn parse_renumber(parser: &mut lexopt::Parser) -> Result<Command, UsageError> {
+    use crate::ide::renumber::{NumberingMode, RenumberOptions};
+    let mut options = RenumberCliOptions {
+        renumber: RenumberOptions::default(),
+        check: false,
+        config_path: None,
+        paths: Vec::new(),
+    };
+    let mut mode_flags = 0;
+    while let Some(arg) = parser.next()? {
+        match arg {
+            Short('h') | Long("help") => return Ok(Command::Help),
+            Long("check") => options.check = true,
+            Long("config") => options.config_path = Some(PathBuf::from(parser.value()?)),
+            Long(flag @ ("start" | "step")) => {
+                let flag = flag.to_string();
+                let value = parser.value()?.string()?;
+                let number: u64 = value
+                    .parse()
+                    .ok()
+                    .filter(|number| flag == "start" || *number > 0)
+                    .ok_or_else(|| {
+                        UsageError(format!(
+                            "--{flag} needs a {} whole number, not {value:?}",
+                            if flag == "start" {
+                                "non-negative"
+                            } else {
+                                "positive"
+                            }
+                        ))
+                    })?;
+                if flag == "start" {
+                    options.renumber.start = number;
+                } else {
+                    options.renumber.step = number;
+                }
+            }
+            Long(flag @ ("keep" | "all" | "drop")) => {
+                mode_flags += 1;
+                options.renumber.mode = match flag {
+                    "keep" => NumberingMode::Keep,
+                    "all" => NumberingMode::All,
+                    _ => NumberingMode::Drop,
+                };
+            }
+            Value(path) => options.paths.push(PathBuf::from(path)),
+            other => return Err(other.unexpected().into()),
+        }
+    }
+    if mode_flags > 1 {
+        return Err(UsageError(
+            "choose one of --keep, --all and --drop".to_string(),
+        ));
+    }
+    if options.paths.is_empty() {
+        return Err(UsageError(
+            "`renumber` needs at least one file or folder".to_string(),
+        ));
+    }
+    Ok(Command::Renumber(options))
+}
+
 /// Reads `mpf,spf` (a leading dot is tolerated, `.mpf`, because that is how people often write
 /// extensions on a command line).
 fn parse_extension_list(list: &str) -> Result<Vec<String>, UsageError> {
@@ -275,6 +382,36 @@ mod tests {
             Some(vec!["mpf".to_string(), "spf".to_string(), "nc".to_string()])
         );
         assert_eq!(options.paths, vec![PathBuf::from("-odd-name.mpf")]);
+    }
+
+    #[test]
+    fn fmt_and_renumber_options_are_read() {
+        use crate::ide::renumber::NumberingMode;
+        assert_eq!(
+            parse(&["fmt", "--check", "a.mpf"]),
+            Ok(Command::Fmt(FmtOptions {
+                check: true,
+                config_path: None,
+                paths: vec![PathBuf::from("a.mpf")]
+            }))
+        );
+        match parse(&["renumber", "--start", "100", "--step", "5", "--drop", "d"]) {
+            Ok(Command::Renumber(options)) => {
+                assert_eq!((options.renumber.start, options.renumber.step), (100, 5));
+                assert_eq!(options.renumber.mode, NumberingMode::Drop);
+                assert!(!options.check);
+            }
+            other => panic!("{other:?}"),
+        }
+        assert!(parse(&["renumber", "--step", "0", "a"])
+            .unwrap_err()
+            .0
+            .contains("positive"));
+        assert!(parse(&["renumber", "--keep", "--drop", "a"])
+            .unwrap_err()
+            .0
+            .contains("one of"));
+        assert!(parse(&["fmt"]).is_err());
     }
 
     #[test]

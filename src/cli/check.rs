@@ -42,32 +42,7 @@ pub(crate) fn run_check(
     };
     let mut configs = ConfigCache::new(fixed_config, options.extensions.clone());
 
-    let mut files = Vec::new();
-    for path in &options.paths {
-        let metadata = match fs::metadata(path) {
-            Ok(metadata) => metadata,
-            Err(io_error) => {
-                problems.report(format_args!("{}: {io_error}", path.display()));
-                continue;
-            }
-        };
-        if metadata.is_dir() {
-            let n_files_before = files.len();
-            walk_folder(path, &mut configs, &mut problems, &mut files);
-            if files.len() == n_files_before {
-                if let Some(config) = configs.for_folder(path, &mut problems) {
-                    problems.report(format_args!(
-                        "{}: no program files found in this folder (looking for the extensions {})",
-                        path.display(),
-                        config.extensions.join(", ")
-                    ));
-                }
-            }
-        } else {
-            // A file named on the command line is checked whatever its extension: the user chose it.
-            files.push(path.clone());
-        }
-    }
+    let files = collect_program_files(&options.paths, &mut configs, &mut problems);
 
     let mut counts = SeverityCounts::default();
     let mut n_checked_files = 0;
@@ -144,9 +119,45 @@ pub(crate) fn run_check(
     })
 }
 
+/// The files named on the command line and the program files below the folders named there, in
+/// order; paths that cannot be read and folders without program files are reported.
+pub(super) fn collect_program_files(
+    paths: &[PathBuf],
+    configs: &mut ConfigCache,
+    problems: &mut ProblemReporter<'_>,
+) -> Vec<PathBuf> {
+    let mut files = Vec::new();
+    for path in paths {
+        let metadata = match fs::metadata(path) {
+            Ok(metadata) => metadata,
+            Err(io_error) => {
+                problems.report(format_args!("{}: {io_error}", path.display()));
+                continue;
+            }
+        };
+        if metadata.is_dir() {
+            let n_files_before = files.len();
+            walk_folder(path, configs, problems, &mut files);
+            if files.len() == n_files_before {
+                if let Some(config) = configs.for_folder(path, problems) {
+                    problems.report(format_args!(
+                        "{}: no program files found in this folder (looking for the extensions {})",
+                        path.display(),
+                        config.extensions.join(", ")
+                    ));
+                }
+            }
+        } else {
+            // A file named on the command line is checked whatever its extension: the user chose it.
+            files.push(path.clone());
+        }
+    }
+    files
+}
+
 /// Collects the files below `folder` whose extension the folder's configuration accepts, in sorted
 /// order so that the output is the same on every run and every filesystem.
-fn walk_folder(
+pub(super) fn walk_folder(
     folder: &Path,
     configs: &mut ConfigCache,
     problems: &mut ProblemReporter<'_>,
@@ -209,7 +220,7 @@ fn walk_folder(
 
 /// The configuration of each folder: the one given with `--config`, or the nearest `sinumerik.toml`,
 /// or the defaults. Both the search and the parsing are cached, and a broken file is reported once.
-struct ConfigCache {
+pub(super) struct ConfigCache {
     fixed: Option<Rc<MachineConfig>>,
     extensions_override: Option<Vec<String>>,
     default: Rc<MachineConfig>,
@@ -219,7 +230,10 @@ struct ConfigCache {
 }
 
 impl ConfigCache {
-    fn new(fixed: Option<MachineConfig>, extensions_override: Option<Vec<String>>) -> ConfigCache {
+    pub(super) fn new(
+        fixed: Option<MachineConfig>,
+        extensions_override: Option<Vec<String>>,
+    ) -> ConfigCache {
         ConfigCache {
             fixed: fixed.map(|config| Rc::new(with_extensions(config, &extensions_override))),
             default: Rc::new(with_extensions(
@@ -233,7 +247,7 @@ impl ConfigCache {
     }
 
     /// The configuration for programs in `folder`, or `None` when its configuration file is broken.
-    fn for_folder(
+    pub(super) fn for_folder(
         &mut self,
         folder: &Path,
         problems: &mut ProblemReporter<'_>,
@@ -276,13 +290,13 @@ fn with_extensions(
 }
 
 /// Reports problems with the inputs on stderr and remembers that there was one, for the exit code.
-struct ProblemReporter<'a> {
-    stderr: &'a mut dyn Write,
-    any_problem: bool,
+pub(super) struct ProblemReporter<'a> {
+    pub(super) stderr: &'a mut dyn Write,
+    pub(super) any_problem: bool,
 }
 
 impl ProblemReporter<'_> {
-    fn report(&mut self, message: impl Display) {
+    pub(super) fn report(&mut self, message: impl Display) {
         self.any_problem = true;
         // If stderr itself cannot be written there is nobody left to tell; the exit code still says it.
         let _ = writeln!(self.stderr, "error: {message}");

@@ -5,6 +5,8 @@
 //!   the checker, exit codes.
 //! - `report.rs`: the human and JSON output formats and the byte-span to character-column conversion.
 //! - `source_file.rs`: reading program files: size limit, UTF-8 with Windows-1252 fallback, BOM.
+//! - `fmt.rs`, `renumber.rs`: the rewriting commands; `rewrite.rs`: what they share (writing a file
+//!   back in its own encoding, `--check`).
 //!
 //! ```text
 //! sinumerik-lsp check [--format human|json] [--config FILE] [--extensions mpf,spf] PATH...
@@ -23,10 +25,13 @@
 
 mod args;
 mod check;
+mod fmt;
 pub(crate) mod preview;
 mod preview_json;
 mod preview_svg;
+mod renumber;
 mod report;
+mod rewrite;
 pub mod source_file;
 
 use args::{parse_args, Command};
@@ -46,6 +51,11 @@ Usage:
   sinumerik-lsp check [OPTIONS] PATH...  check programs (folders recursively)
   sinumerik-lsp preview [--format json|csv|svg] [--max-segments N] [--config FILE] FILE
                                          the resolved end point of every move
+  sinumerik-lsp fmt [--check] [--config FILE] PATH...
+                                         normalise spacing and letter case in place
+  sinumerik-lsp renumber [--start N] [--step N] [--keep|--all|--drop] [--check]
+                         [--config FILE] PATH...
+                                         renumber blocks in place (default 10, 10, --keep)
   sinumerik-lsp --help                   show this help
   sinumerik-lsp --version                show the version
 
@@ -58,7 +68,8 @@ Without --config, each program uses the sinumerik.toml in its folder or the
 nearest folder above it, else the defaults of a metric milling machine.
 
 Exit codes: 0 no errors found, 1 errors found, 2 usage, file or configuration
-problem.
+problem. fmt and renumber: 0 done (or nothing to change), 1 with --check when a
+file would change, 2 a file that could not be read, rewritten or written.
 ";
 
 /// Runs the program with the process's arguments (the first is the program name) on the real stdout
@@ -106,6 +117,8 @@ pub fn run_with_output(
         Command::Version => writeln!(stdout, "{}", version_line()).map(|()| EXIT_OK),
         Command::Check(options) => check::run_check(&options, stdout, stderr),
         Command::Preview(options) => preview::run_preview(&options, stdout, stderr),
+        Command::Fmt(options) => fmt::run_fmt(&options, stdout, stderr),
+        Command::Renumber(options) => renumber::run_renumber(&options, stdout, stderr),
     };
     match result.and_then(|exit_code| stdout.flush().map(|()| exit_code)) {
         Ok(exit_code) => exit_code,

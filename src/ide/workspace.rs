@@ -1,0 +1,242 @@
+//! The index over the documents of a workspace: each document's symbol table, its program name (the
+//! file stem, `_N_NAME_SPF` read as `NAME`) and kind, and lookups across documents: subprograms by
+//! name, global `DEF`/`DEFINE` from `.DEF` files, `EXTERN` declarations. The caller gives the texts;
+//! nothing here reads a file.
+
+use crate::analysis::document::LineSource;
+use crate::config::MachineConfig;
+use crate::ide::symbols::{MacroDefinition, ProcedureDefinition, SymbolTable, VariableDefinition};
+use std::collections::BTreeMap;
+use std::sync::Arc;
+
+/// The caller's name for a document (a URI or a path); compared as written.
+pub type DocumentId = Arc<str>;
+
+/// What a file holds, by its extension.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum FileKind {
+    /// `.MPF`: a main program.
+    MainProgram,
+    /// `.SPF`: a subprogram or cycle.
+    Subprogram,
+    /// `.DEF`: definitions of global user data and macros.
+    Definitions,
+    /// Anything else (`.INI`, `.TXT`, ...).
+    Other,
+}
+
+/// One indexed document.
+#[derive(Debug, Clone)]
+pub struct IndexedDocument {
+    pub id: DocumentId,
+    pub kind: FileKind,
+    /// The program name the control calls it by, upper case.
+    pub program_name: String,
+    pub symbols: Arc<SymbolTable>,
+}
+
+/// The program name and kind of a file name or path: `PART2.SPF` and `_N_PART2_SPF` are `PART2`.
+pub fn program_name_and_kind(file_name: &str) -> (String, FileKind) {
+    let base = file_name.rsplit(['/', '\\']).next().unwrap_or(file_name);
+    let (stem, extension) = match base.rfind('.') {
+        Some(dot) if dot > 0 => (&base[..dot], &base[dot + 1..]),
+        _ => (base, ""),
+    };
+    let upper_stem = stem.to_ascii_uppercase();
+    let (stem, extension) = match upper_stem.strip_prefix("_N_") {
+        Some(rest)
+            if extension.is_empty()
+                || rest.ends_with("_SPF")
+                || rest.ends_with("_MPF")
+                || rest.ends_with("_DEF") =>
+        {
+            match rest.rfind('_') {
+                Some(underscore) if underscore > 0 => (
+                    rest[..underscore].to_string(),
+                    rest[underscore + 1..].to_string(),
+                ),
+                _ => (rest.to_string(), extension.to_ascii_uppercase()),
+            }
+        }
+        _ => (upper_stem.clone(), extension.to_ascii_uppercase()),
+    };
+    let kind = match extension.as_str() {
+        "MPF" => FileKind::MainProgram,
+        "SPF" => FileKind::Subprogram,
+        "DEF" => FileKind::Definitions,
+        _ => FileKind::Other,
+    };
+    (stem, kind)
+}
+
+/// The symbol tables of many documents and the cross-document lookups.
+#[derive(Debug, Clone, Default)]
+pub struct WorkspaceIndex {
+    documents: BTreeMap<DocumentId, IndexedDocument>,
+    /// Whether the caller has given every program and definition file the programs use, so that a
+    /// name found nowhere is really missing. Until then, nothing is reported as unknown.
+    complete: bool,
+}
+
+impl WorkspaceIndex {
+    pub fn new() -> WorkspaceIndex {
+        WorkspaceIndex::default()
+    }
+
+    /// Adds or replaces a document, collecting its symbol table. `file_name` is its path or URI, from
+    /// which the program name and kind are taken.
+    pub fn update(
+        &mut self,
+        id: DocumentId,
+        file_name: &str,
+        source: &dyn LineSource,
+        config: &MachineConfig,
+    ) {
+        let symbols = Arc::new(SymbolTable::build(source, config));
+        self.insert(id, file_name, symbols);
+    }
+
+    /// Adds or replaces a document whose symbol table the caller has already built.
+    pub fn insert(&mut self, id: DocumentId, file_name: &str, symbols: Arc<SymbolTable>) {
+        let (program_name, kind) = program_name_and_kind(file_name);
+        self.documents.insert(
+            Arc::clone(&id),
+            IndexedDocument {
+                id,
+                kind,
+                program_name,
+                symbols,
+            },
+        );
+    }
+
+    pub fn remove(&mut self, id: &str) {
+        self.documents.remove(id);
+    }
+
+    /// Says whether every file the programs use is indexed (the server sets it once its background
+    /// indexing has finished; the CLI when it has read the folders).
+    pub fn set_complete(&mut self, complete: bool) {
+        self.complete = complete;
+    }
+
+    pub fn is_complete(&self) -> bool {
+        self.complete
+    }
+
+    pub fn document(&self, id: &str) -> Option<&IndexedDocument> {
+        self.documents.get(id)
+    }
+
+    pub fn documents(&self) -> impl Iterator<Item = &IndexedDocument> {
+        self.documents.values()
+    }
+
+    /// The documents that define the program `name` (upper case): by file name (programs, not
+    /// definition files), or by a `PROC` header of that name.
+    pub fn programs_named<'a>(
+        &'a self,
+        name: &'a str,
+    ) -> impl Iterator<Item = &'a IndexedDocument> + 'a {
+        self.documents.values().filter(move |document| {
+            (document.kind != FileKind::Definitions && document.program_name == name)
+                || document
+                    .symbols
+                    .procedure
+                    .as_ref()
+                    .is_some_and(|procedure| procedure.name == name)
+        })
+    }
+
+    /// The `PROC` header of the program `name`, if an indexed document has one.
+    pub fn procedure<'a>(
+        &'a self,
+        name: &'a str,
+    ) -> Option<(&'a IndexedDocument, &'a ProcedureDefinition)> {
+        self.programs_named(name).find_map(|document| {
+            document
+                .symbols
+                .procedure
+                .as_ref()
+                .filter(|procedure| procedure.name == name)
+                .map(|procedure| (document, procedure))
+        })
+    }
+
+    /// Global variables (`DEF NCK|CHAN ...` or any `DEF` of a `.DEF` file) named `name`.
+    pub fn global_variables<'a>(
+        &'a self,
+        name: &'a str,
+    ) -> impl Iterator<Item = (&'a IndexedDocument, &'a VariableDefinition)> + 'a {
+        self.documents.values().flat_map(move |document| {
+            document
+                .symbols
+                .variables
+                .iter()
+                .filter(move |variable| {
+                    variable.name == name
+                        && (document.kind == FileKind::Definitions
+                            || variable.global_attribute.is_some())
+                })
+                .map(move |variable| (document, variable))
+        })
+    }
+
+    /// Macros of `.DEF` files named `name`.
+    pub fn global_macros<'a>(
+        &'a self,
+        name: &'a str,
+    ) -> impl Iterator<Item = (&'a IndexedDocument, &'a MacroDefinition)> + 'a {
+        self.documents
+            .values()
+            .filter(|document| document.kind == FileKind::Definitions)
+            .flat_map(move |document| {
+                document
+                    .symbols
+                    .macros
+                    .iter()
+                    .filter(move |definition| definition.name == name)
+                    .map(move |definition| (document, definition))
+            })
+    }
+
+    /// Whether a main program of the workspace defines `name` with `DEF`: such program-global data
+    /// may be visible in the subprograms it calls (depending on MD11120), so a subprogram's use of
+    /// the name is not reported as undefined.
+    pub fn main_program_defines(&self, name: &str) -> bool {
+        self.documents.values().any(|document| {
+            document.kind == FileKind::MainProgram
+                && document
+                    .symbols
+                    .variables
+                    .iter()
+                    .any(|variable| variable.name == name)
+        })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn program_names_come_from_stems_and_control_file_names() {
+        assert_eq!(
+            program_name_and_kind("/a/b/part2.spf"),
+            ("PART2".to_string(), FileKind::Subprogram)
+        );
+        assert_eq!(
+            program_name_and_kind("C:\\x\\MAIN.MPF"),
+            ("MAIN".to_string(), FileKind::MainProgram)
+        );
+        assert_eq!(
+            program_name_and_kind("_N_CUST_800_SPF"),
+            ("CUST_800".to_string(), FileKind::Subprogram)
+        );
+        assert_eq!(
+            program_name_and_kind("GUD.DEF"),
+            ("GUD".to_string(), FileKind::Definitions)
+        );
+        assert_eq!(program_name_and_kind("notes.txt").1, FileKind::Other);
+    }
+}
