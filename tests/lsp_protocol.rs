@@ -600,3 +600,39 @@ async fn every_version_gets_its_diagnostics_also_when_they_did_not_change() {
     assert_eq!(s101(&client.diagnostics(uri, 4).await), moved);
     client.shutdown().await;
 }
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn the_modal_state_request_gives_the_state_after_a_block() {
+    let mut client = initialized_client().await;
+    let text = "N10 G18 G90 G71 DIAMON G0 X20 Z90\nN20 G91 G1 X2 F100\nN30 G70\n";
+    client.open(SEED_URI, 1, text).await;
+    client.diagnostics(SEED_URI, 1).await;
+    let state = |line: u32| json!({"uri": SEED_URI, "line": line});
+    let first = client
+        .request("sinumerik/modalState", state(0))
+        .await
+        .expect("an answer");
+    assert_eq!(first["motion"], "G0");
+    assert_eq!(first["plane"], "G18");
+    assert_eq!(first["distance"], "G90");
+    assert_eq!(first["diameter"], "DIAMON");
+    let second = client
+        .request("sinumerik/modalState", state(1))
+        .await
+        .expect("an answer");
+    assert_eq!(second["distance"], "G91");
+    assert_eq!(second["motion"], "G1");
+    assert_eq!(second["feed"], 100.0);
+    let third = client
+        .request("sinumerik/modalState", state(2))
+        .await
+        .expect("an answer");
+    assert_eq!(third["units"], "G70");
+    let unknown_document = client
+        .request(
+            "sinumerik/modalState",
+            json!({"uri": "file:///nowhere/else.mpf", "line": 0}),
+        )
+        .await;
+    assert!(unknown_document.is_err(), "{unknown_document:?}");
+}

@@ -33,3 +33,32 @@ pub struct DocumentTextResult {
     pub version: i32,
     pub text: String,
 }
+
+/// `sinumerik/modalState`: the modal state in effect after the block on a line (its own G functions
+/// included), for a status bar. Every field is `null` where the state is unknown there (inherited from
+/// a caller, or lost after a call).
+pub const MODAL_STATE_REQUEST: &str = "sinumerik/modalState";
+
+#[derive(Debug, Clone, Deserialize)]
+#[serde(rename_all = "camelCase")]
+pub struct ModalStateParams {
+    pub uri: Uri,
+    /// 0-based; a line past the end gives the state at the end of the program.
+    pub line: u32,
+}
+
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
+#[serde(rename_all = "camelCase")]
+pub struct ModalStateResult {
+    pub motion: Option<String>,
+    pub plane: Option<String>,
+    pub units: Option<String>,
+    pub distance: Option<String>,
+    pub diameter: Option<String>,
+    pub settable_offset: Option<String>,
+    /// The modal feed in the basic unit system.
+    pub feed: Option<f64>,
+    /// Whether a label, jump or loop before this line may make the control's path differ from
+    /// program order.
+    pub flow_uncertain: bool,
+}

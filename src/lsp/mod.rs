@@ -47,6 +47,7 @@ where
     let (outgoing, framework_output, output_tasks) = outgoing::start(output);
     let (service, socket) = LspService::build(move |client| server::Backend::new(client, outgoing))
         .custom_method(ext::DOCUMENT_TEXT_REQUEST, server::Backend::document_text)
+        .custom_method(ext::MODAL_STATE_REQUEST, server::Backend::modal_state)
         .finish();
     Server::new(input, framework_output, socket)
         .serve(service)

@@ -9,7 +9,8 @@ use crate::lsp::convert::PositionEncoding;
 use crate::lsp::documents::{lock, Analysed, Documents, OpenDocument, WorkerContext};
 use crate::lsp::endpoint_preview;
 use crate::lsp::ext::{
-    DocumentTextParams, DocumentTextResult, EndpointPreviewParams, ENDPOINT_PREVIEW_COMMAND,
+    DocumentTextParams, DocumentTextResult, EndpointPreviewParams, ModalStateParams,
+    ModalStateResult, ENDPOINT_PREVIEW_COMMAND,
 };
 use crate::lsp::hover::hover;
 use crate::lsp::inlay::inlay_hints;
@@ -142,6 +143,29 @@ impl Backend {
 
 impl Backend {
     /// `sinumerik/documentText`.
+    /// `sinumerik/modalState`.
+    pub async fn modal_state(&self, params: ModalStateParams) -> Result<ModalStateResult> {
+        let _timer = HandlerTimer::new("sinumerik/modalState", &self.outgoing);
+        let line = params.line as usize;
+        self.on_analysis(&params.uri, move |analysed| {
+            let after = analysed
+                .analysis
+                .block_report(&analysed.lines(), line)
+                .after;
+            ModalStateResult {
+                motion: after.motion,
+                plane: after.plane,
+                units: after.units,
+                distance: after.distance,
+                diameter: after.diameter,
+                settable_offset: after.settable_offset,
+                feed: after.feed,
+                flow_uncertain: after.flow_uncertain,
+            }
+        })
+        .await
+    }
+
     pub async fn document_text(&self, params: DocumentTextParams) -> Result<DocumentTextResult> {
         let document = self
             .documents
