@@ -443,7 +443,16 @@ impl SymbolTable {
             Statement::Jump {
                 kind, target, span, ..
             } => {
-                let keyword_span = jump_keyword_span(line, *span);
+                let target_start = match target {
+                    JumpTarget::Label(span) | JumpTarget::BlockNumber { span, .. } => span.start(),
+                    JumpTarget::Computed(_) | JumpTarget::None => span.end(),
+                };
+                // A computed target has no span here: its jump is never resolved, the keyword is then the
+                // statement's first word.
+                let keyword_span = match target {
+                    JumpTarget::Computed(_) => identifier_prefix(line, *span),
+                    _ => jump_keyword_before(line, *span, target_start),
+                };
                 let destination = match target {
                     JumpTarget::Label(span) => JumpDestination::Label {
                         name: upper(text_of(line, *span)),
@@ -629,27 +638,21 @@ fn bracket_text(text: &str, lexemes: &[Lexeme], index: usize) -> Option<String> 
     None
 }
 
-/// The keyword of a jump statement whose span may start at its `IF`.
-fn jump_keyword_span(line: &str, span: Span) -> Span {
-    let statement = text_of(line, span);
-    let upper_statement = statement.to_ascii_uppercase();
-    let mut search = 0;
-    while let Some(found) = upper_statement[search..].find("GOTO") {
-        let start = search + found;
-        let rest = &upper_statement.as_bytes()[start + 4..];
-        let suffix = rest
-            .iter()
-            .take_while(|byte| byte.is_ascii_alphabetic())
-            .count();
-        let before_ok = start == 0
-            || !upper_statement.as_bytes()[start - 1].is_ascii_alphanumeric()
-                && upper_statement.as_bytes()[start - 1] != b'_';
-        if before_ok && suffix <= 1 {
-            return Span::new(span.start() + start, span.start() + start + 4 + suffix);
-        }
-        search = start + 4;
+/// The keyword of a jump statement (whose span may start at its `IF`): the word that ends right
+/// before the target, which starts at `target_start`.
+fn jump_keyword_before(line: &str, statement: Span, target_start: usize) -> Span {
+    let bytes = line.as_bytes();
+    let mut end = target_start.min(bytes.len());
+    while end > statement.start() && bytes[end - 1].is_ascii_whitespace() {
+        end -= 1;
     }
-    identifier_prefix(line, span)
+    let mut start = end;
+    while start > statement.start()
+        && (bytes[start - 1].is_ascii_alphanumeric() || bytes[start - 1] == b'_')
+    {
+        start -= 1;
+    }
+    Span::new(start, end)
 }
 
 /// For `CALL "NAME"`, `CALL "/_N_DIR/_N_NAME_SPF"` and `PCALL /_N_DIR/_N_NAME_SPF`: the program name
