@@ -593,7 +593,10 @@ impl SymbolTable {
             }
         }
         for name_span in names {
-            let relative = Span::new(name_span.start() - offset, name_span.end() - offset);
+            let relative = Span::new(
+                name_span.start().saturating_sub(offset),
+                name_span.end().saturating_sub(offset),
+            );
             let after = lexemes
                 .iter()
                 .position(|lexeme| lexeme.span.start() >= relative.end());
@@ -702,7 +705,7 @@ fn describe_parameters(
         .any(|lexeme| lexeme.token == Some(Token::LeftParen));
     let mut described = Vec::new();
     for name_span in parameters {
-        let relative_start = name_span.start() - offset;
+        let relative_start = name_span.start().saturating_sub(offset);
         let Some(name_index) = lexemes
             .iter()
             .position(|lexeme| lexeme.span.start() == relative_start)
