@@ -236,16 +236,7 @@ const RULE_CHARACTERS: &[char] = &['*', '-', '=', '+', '#', '~', '_', '/'];
 impl SymbolTable {
     /// Collects the symbol table of a document with the machine's axes.
     pub fn build(source: &dyn LineSource, config: &MachineConfig) -> SymbolTable {
-        let mut context = SyntaxContext::new(config);
-        source.for_each_line(0, &mut |_, line| {
-            if let Some(name) = crate::syntax::lines_containing(line, b"DEFINE")
-                .next()
-                .and_then(crate::syntax::macro_defined_by)
-            {
-                context.add_macro(name);
-            }
-            true
-        });
+        let context = macro_context(source, config);
         let mut table = SymbolTable::default();
         let mut parser = LineParser::new();
         let mut block = Block::default();
@@ -266,6 +257,16 @@ impl SymbolTable {
             procedure.documentation = documentation_above(&comment_lines, procedure.line);
         }
         table
+    }
+
+    /// The parser's context for this document: the machine's axes and the document's macros, so that
+    /// a feature that parses lines again reads them as the table did.
+    pub fn syntax_context(&self, config: &MachineConfig) -> SyntaxContext {
+        let mut context = SyntaxContext::new(config);
+        for definition in &self.macros {
+            context.add_macro(&definition.name);
+        }
+        context
     }
 
     /// The lines of each label, in ascending order, for resolving many jumps at once.
@@ -611,6 +612,22 @@ impl SymbolTable {
             });
         }
     }
+}
+
+/// The parser's context with the macros a document defines anywhere (`DEFINE name AS ...`): a macro
+/// may be used above its definition when it comes from a definition file.
+pub fn macro_context(source: &dyn LineSource, config: &MachineConfig) -> SyntaxContext {
+    let mut context = SyntaxContext::new(config);
+    source.for_each_line(0, &mut |_, line| {
+        if let Some(name) = crate::syntax::lines_containing(line, b"DEFINE")
+            .next()
+            .and_then(crate::syntax::macro_defined_by)
+        {
+            context.add_macro(name);
+        }
+        true
+    });
+    context
 }
 
 /// The text of a `[...]` group starting at lexeme `index`, brackets included.
