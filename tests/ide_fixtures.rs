@@ -508,11 +508,19 @@ fn workspace_diagnostics() {
         for (name, text) in &fixture.files {
             for item in cross_file_diagnostics(&index, name, config) {
                 let line = line_of(text, item.line);
+                // The fix with the text each edit replaces, so that the edited span is checked too.
                 let fix = item
                     .diagnostic
                     .fix
                     .as_ref()
-                    .map(|fix| format!(" [fix: {}]", fix.title))
+                    .map(|fix| {
+                        let replaced: Vec<&str> = fix
+                            .edits
+                            .iter()
+                            .map(|edit| &line[edit.span.start()..edit.span.end()])
+                            .collect();
+                        format!(" [fix: {} replacing {replaced:?}]", fix.title)
+                    })
                     .unwrap_or_default();
                 let _ = writeln!(
                     out,

@@ -29,18 +29,13 @@ pub(crate) fn run_check(
         any_problem: false,
     };
 
-    let fixed_config = match &options.config_path {
-        None => None,
-        Some(config_path) => match load_config_file(config_path) {
-            Ok(config) => Some(config),
-            Err(config_error) => {
-                // A configuration given explicitly applies to every file, so nothing can be checked.
-                problems.report(config_error);
-                return Ok(EXIT_TROUBLE);
-            }
-        },
+    let Some(mut configs) = run_configs(
+        options.config_path.as_deref(),
+        options.extensions.clone(),
+        &mut problems,
+    ) else {
+        return Ok(EXIT_TROUBLE);
     };
-    let mut configs = ConfigCache::new(fixed_config, options.extensions.clone());
 
     let files = collect_program_files(&options.paths, &mut configs, &mut problems);
 
@@ -117,6 +112,27 @@ pub(crate) fn run_check(
     } else {
         EXIT_OK
     })
+}
+
+/// The configurations of a run: the file given with `--config` for every program, else each
+/// folder's own. `None` when the given file cannot be used (it is reported): a configuration given
+/// explicitly applies to every file, so nothing can be processed.
+pub(super) fn run_configs(
+    config_path: Option<&Path>,
+    extensions: Option<Vec<String>>,
+    problems: &mut ProblemReporter<'_>,
+) -> Option<ConfigCache> {
+    let fixed_config = match config_path {
+        None => None,
+        Some(config_path) => match load_config_file(config_path) {
+            Ok(config) => Some(config),
+            Err(config_error) => {
+                problems.report(config_error);
+                return None;
+            }
+        },
+    };
+    Some(ConfigCache::new(fixed_config, extensions))
 }
 
 /// The files named on the command line and the program files below the folders named there, in
@@ -230,10 +246,7 @@ pub(super) struct ConfigCache {
 }
 
 impl ConfigCache {
-    pub(super) fn new(
-        fixed: Option<MachineConfig>,
-        extensions_override: Option<Vec<String>>,
-    ) -> ConfigCache {
+    fn new(fixed: Option<MachineConfig>, extensions_override: Option<Vec<String>>) -> ConfigCache {
         ConfigCache {
             fixed: fixed.map(|config| Rc::new(with_extensions(config, &extensions_override))),
             default: Rc::new(with_extensions(

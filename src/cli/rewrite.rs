@@ -6,12 +6,12 @@
 //! since every byte decodes to its own character) is encoded back byte for byte. A file that cannot
 //! be written back exactly (invalid UTF-8 after a byte-order mark) is refused with a message.
 
-use super::check::{collect_program_files, ConfigCache, ProblemReporter};
+use super::check::{collect_program_files, run_configs, ProblemReporter};
 use super::source_file::{
     decode_source, decode_windows_1252, SourceEncoding, MAX_SOURCE_FILE_SIZE,
 };
 use super::{EXIT_ERRORS_FOUND, EXIT_OK, EXIT_TROUBLE};
-use crate::config::{load_config_file, MachineConfig};
+use crate::config::MachineConfig;
 use std::collections::HashMap;
 use std::io::{self, Write};
 use std::path::{Path, PathBuf};
@@ -39,17 +39,9 @@ pub(super) fn run_rewrite(
         stderr,
         any_problem: false,
     };
-    let fixed_config = match run.config_path {
-        None => None,
-        Some(config_path) => match load_config_file(config_path) {
-            Ok(config) => Some(config),
-            Err(config_error) => {
-                problems.report(config_error);
-                return Ok(EXIT_TROUBLE);
-            }
-        },
+    let Some(mut configs) = run_configs(run.config_path, None, &mut problems) else {
+        return Ok(EXIT_TROUBLE);
     };
-    let mut configs = ConfigCache::new(fixed_config, None);
     let files = collect_program_files(run.paths, &mut configs, &mut problems);
     let mut changed = 0usize;
     let mut unchanged = 0usize;

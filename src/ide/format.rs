@@ -78,18 +78,8 @@ impl LineFormatter {
         config: &MachineConfig,
         options: FormatOptions,
     ) -> LineFormatter {
-        let mut context = SyntaxContext::new(config);
-        source.for_each_line(0, &mut |_, line| {
-            if let Some(name) = crate::syntax::lines_containing(line, b"DEFINE")
-                .next()
-                .and_then(crate::syntax::macro_defined_by)
-            {
-                context.add_macro(name);
-            }
-            true
-        });
         LineFormatter {
-            context,
+            context: crate::ide::symbols::macro_context(source, config),
             options,
             parser: LineParser::new(),
             block: Block::default(),

@@ -9,7 +9,7 @@ use crate::ide::jumps::{resolve_jump, JumpResolution};
 use crate::ide::symbols::{JumpDestination, SymbolTable};
 use crate::ide::{LineEdit, Span};
 use crate::syntax::ast::{Block, Statement};
-use crate::syntax::{LineParser, SyntaxContext};
+use crate::syntax::LineParser;
 use std::collections::HashMap;
 
 /// Which blocks carry a number after renumbering.
@@ -195,10 +195,7 @@ fn line_layouts(
     config: &MachineConfig,
     table: &SymbolTable,
 ) -> Vec<LineLayout> {
-    let mut context = SyntaxContext::new(config);
-    for definition in &table.macros {
-        context.add_macro(&definition.name);
-    }
+    let context = table.syntax_context(config);
     let mut parser = LineParser::new();
     let mut block = Block::default();
     let mut diagnostics = Vec::new();

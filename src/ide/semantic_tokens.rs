@@ -14,7 +14,7 @@ use crate::syntax::ast::{
 };
 use crate::syntax::keywords;
 use crate::syntax::lexer::{lex_line_into, Lexeme, Token};
-use crate::syntax::{LineParser, SyntaxContext};
+use crate::syntax::LineParser;
 use std::ops::Range;
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
@@ -67,10 +67,7 @@ pub fn semantic_tokens(
     config: &MachineConfig,
     lines: Range<usize>,
 ) -> Vec<SemanticToken> {
-    let mut context = SyntaxContext::new(config);
-    for definition in &table.macros {
-        context.add_macro(&definition.name);
-    }
+    let context = table.syntax_context(config);
     let mut parser = LineParser::new();
     let mut block = Block::default();
     let mut diagnostics = Vec::new();

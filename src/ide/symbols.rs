@@ -236,16 +236,7 @@ const RULE_CHARACTERS: &[char] = &['*', '-', '=', '+', '#', '~', '_', '/'];
 impl SymbolTable {
     /// Collects the symbol table of a document with the machine's axes.
     pub fn build(source: &dyn LineSource, config: &MachineConfig) -> SymbolTable {
-        let mut context = SyntaxContext::new(config);
-        source.for_each_line(0, &mut |_, line| {
-            if let Some(name) = crate::syntax::lines_containing(line, b"DEFINE")
-                .next()
-                .and_then(crate::syntax::macro_defined_by)
-            {
-                context.add_macro(name);
-            }
-            true
-        });
+        let context = macro_context(source, config);
         let mut table = SymbolTable::default();
         let mut parser = LineParser::new();
         let mut block = Block::default();
@@ -266,6 +257,16 @@ impl SymbolTable {
             procedure.documentation = documentation_above(&comment_lines, procedure.line);
         }
         table
+    }
+
+    /// The parser's context for this document: the machine's axes and the document's macros, so that
+    /// a feature that parses lines again reads them as the table did.
+    pub fn syntax_context(&self, config: &MachineConfig) -> SyntaxContext {
+        let mut context = SyntaxContext::new(config);
+        for definition in &self.macros {
+            context.add_macro(&definition.name);
+        }
+        context
     }
 
     /// The lines of each label, in ascending order, for resolving many jumps at once.
@@ -443,7 +444,16 @@ impl SymbolTable {
             Statement::Jump {
                 kind, target, span, ..
             } => {
-                let keyword_span = jump_keyword_span(line, *span);
+                let target_start = match target {
+                    JumpTarget::Label(span) | JumpTarget::BlockNumber { span, .. } => span.start(),
+                    JumpTarget::Computed(_) | JumpTarget::None => span.end(),
+                };
+                // A computed target has no span here: its jump is never resolved, the keyword is then the
+                // statement's first word.
+                let keyword_span = match target {
+                    JumpTarget::Computed(_) => identifier_prefix(line, *span),
+                    _ => jump_keyword_before(line, *span, target_start),
+                };
                 let destination = match target {
                     JumpTarget::Label(span) => JumpDestination::Label {
                         name: upper(text_of(line, *span)),
@@ -584,7 +594,10 @@ impl SymbolTable {
             }
         }
         for name_span in names {
-            let relative = Span::new(name_span.start() - offset, name_span.end() - offset);
+            let relative = Span::new(
+                name_span.start().saturating_sub(offset),
+                name_span.end().saturating_sub(offset),
+            );
             let after = lexemes
                 .iter()
                 .position(|lexeme| lexeme.span.start() >= relative.end());
@@ -599,6 +612,22 @@ impl SymbolTable {
             });
         }
     }
+}
+
+/// The parser's context with the macros a document defines anywhere (`DEFINE name AS ...`): a macro
+/// may be used above its definition when it comes from a definition file.
+pub fn macro_context(source: &dyn LineSource, config: &MachineConfig) -> SyntaxContext {
+    let mut context = SyntaxContext::new(config);
+    source.for_each_line(0, &mut |_, line| {
+        if let Some(name) = crate::syntax::lines_containing(line, b"DEFINE")
+            .next()
+            .and_then(crate::syntax::macro_defined_by)
+        {
+            context.add_macro(name);
+        }
+        true
+    });
+    context
 }
 
 /// The text of a `[...]` group starting at lexeme `index`, brackets included.
@@ -629,27 +658,21 @@ fn bracket_text(text: &str, lexemes: &[Lexeme], index: usize) -> Option<String> 
     None
 }
 
-/// The keyword of a jump statement whose span may start at its `IF`.
-fn jump_keyword_span(line: &str, span: Span) -> Span {
-    let statement = text_of(line, span);
-    let upper_statement = statement.to_ascii_uppercase();
-    let mut search = 0;
-    while let Some(found) = upper_statement[search..].find("GOTO") {
-        let start = search + found;
-        let rest = &upper_statement.as_bytes()[start + 4..];
-        let suffix = rest
-            .iter()
-            .take_while(|byte| byte.is_ascii_alphabetic())
-            .count();
-        let before_ok = start == 0
-            || !upper_statement.as_bytes()[start - 1].is_ascii_alphanumeric()
-                && upper_statement.as_bytes()[start - 1] != b'_';
-        if before_ok && suffix <= 1 {
-            return Span::new(span.start() + start, span.start() + start + 4 + suffix);
-        }
-        search = start + 4;
+/// The keyword of a jump statement (whose span may start at its `IF`): the word that ends right
+/// before the target, which starts at `target_start`.
+fn jump_keyword_before(line: &str, statement: Span, target_start: usize) -> Span {
+    let bytes = line.as_bytes();
+    let mut end = target_start.min(bytes.len());
+    while end > statement.start() && bytes[end - 1].is_ascii_whitespace() {
+        end -= 1;
     }
-    identifier_prefix(line, span)
+    let mut start = end;
+    while start > statement.start()
+        && (bytes[start - 1].is_ascii_alphanumeric() || bytes[start - 1] == b'_')
+    {
+        start -= 1;
+    }
+    Span::new(start, end)
 }
 
 /// For `CALL "NAME"`, `CALL "/_N_DIR/_N_NAME_SPF"` and `PCALL /_N_DIR/_N_NAME_SPF`: the program name
@@ -699,7 +722,7 @@ fn describe_parameters(
         .any(|lexeme| lexeme.token == Some(Token::LeftParen));
     let mut described = Vec::new();
     for name_span in parameters {
-        let relative_start = name_span.start() - offset;
+        let relative_start = name_span.start().saturating_sub(offset);
         let Some(name_index) = lexemes
             .iter()
             .position(|lexeme| lexeme.span.start() == relative_start)
