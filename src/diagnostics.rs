@@ -203,7 +203,7 @@ codes! {
     UnbalancedParentheses = "S130", Error, "Parentheses that are not balanced.";
     UnbalancedBrackets = "S131", Error, "Square brackets that are not balanced.";
     UnterminatedString = "S132", Error, "A string without its closing `\"` on the same line (strings have no escapes).";
-    InvalidNumber = "S133", Error, "A malformed number or numeric literal.";
+    InvalidNumber = "S133", Error, "A malformed number or numeric literal, or one too large for the control (beyond about 1.8EX308).";
     ParenthesisComment = "S134", Error, "Text in parentheses used as a comment; only `;` starts a comment in Siemens mode.";
     SameGroupTwice = "S140", Error, "Two G functions of the same group in one block (alarm 12060).";
     SyntaxDefiningConflict = "S141", Error, "More than one syntax-defining G function (groups 1, 2, 3) in one block (alarm 12070).";
@@ -238,6 +238,18 @@ codes! {
     PolarWithoutPole = "A210", Information, "A polar move (AP/RP) while no pole is defined: the pole is the zero point of the workpiece coordinate system.";
     PolarWithPlaneAxis = "A211", Error, "A plane axis programmed together with AP/RP; only the perpendicular axis may join a polar block.";
     PolarRadiusNegative = "A212", Error, "A negative polar radius RP.";
+    SettableDataNotActive = "A213", Warning, "A move under a settable offset (G54 ...) whose data `$P_UIFR[n]` were written since it was selected: the new data are not active until it is selected again.";
+    OpeningAngleOutOfRange = "A214", Error, "An opening angle AR outside 0 < AR < 360, or AR with the end point equal to the start point: AR cannot program a full circle.";
+    IntermediatePointOnLine = "A215", Error, "CIP whose start, intermediate and end point lie on one line, the intermediate point not between the others (alarm 14920).";
+    TurnsOutOfRange = "A216", Error, "TURN outside 0 to 999 (alarm 14048).";
+    PolarAngleUnderG91 = "A217", Hint, "A plain `AP=` under G91: AP is absolute unless written `AP=IC(..)`.";
+    PolarValueAfterPoleChange = "A218", Warning, "The first polar move after a pole or plane change without AP or RP: it relies on a stored value that belongs to the old pole.";
+    CentreLooksAbsolute = "A219", Hint, "A circle rejected for its end point whose I/J/K, read as absolute coordinates, would give a valid circle: I/J/K are incremental unless `=AC(..)`.";
+    InchFeedMixed = "A220", Hint, "A program that programs F and uses both G70/G71 and G700/G710: only G700/G710 convert F.";
+    UnitsChangeInContour = "A221", Warning, "G70/G71/G700/G710 switches between inch and metric while tool radius compensation G41/G42 is active.";
+    SuppressionWithoutAxes = "A222", Hint, "G53, G153 or SUPA in a block without axis values: they act only on the axes of their own block.";
+    IncrementAfterOffsetChange = "A223", Hint, "A G91 move of an axis right after a settable offset or frame change: the change is traversed in addition (SD42440 = 1).";
+    AxisLeftOutAfterRotation = "A224", Information, "The first move after a frame change that rotates, scales or mirrors leaves out a geometry axis the change affects: it keeps its value in the new coordinates, so the move may move it too.";
 }
 
 impl fmt::Display for Code {

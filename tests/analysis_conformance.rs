@@ -3,7 +3,7 @@
 //! and which analysis findings it must report (`!! A201`). See `fixtures/conformance/README.md`.
 
 use sinumerik_lsp::analysis::{analyze_program, Move, ProgramKind};
-use sinumerik_lsp::config::MachineConfig;
+use sinumerik_lsp::config::{parse_config_text, MachineConfig};
 use sinumerik_lsp::syntax::lines;
 use std::path::{Path, PathBuf};
 
@@ -15,9 +15,47 @@ struct Expectation {
     /// The same for machine coordinates, written after `MCS`.
     machine: Vec<(String, Option<(f64, usize)>)>,
     feed: Option<f64>,
+    /// After `ARC`: the centre per axis, the radius (`R10`), the direction (`CW`, `CCW`; in machine
+    /// coordinates `MCSCW`, `MCSCCW`) and the
+    /// sweep in degrees (`SWEEP90`).
+    arc: Option<ArcExpectation>,
     /// Whether the block has a `=>` part (and so must move).
     moves: bool,
+    /// `=> none`: the block must not move.
+    no_move: bool,
     codes: Vec<String>,
+}
+
+#[derive(Debug, Default)]
+struct ArcExpectation {
+    centre: Vec<(String, Option<(f64, usize)>)>,
+    radius: Option<(f64, usize)>,
+    clockwise: Option<bool>,
+    /// `MCSCW` or `MCSCCW`: the direction after the programmable frame.
+    machine_clockwise: Option<bool>,
+    sweep: Option<(f64, usize)>,
+}
+
+/// A written number with the decimals it is written with.
+fn written_number(text: &str) -> (f64, usize) {
+    let number: f64 = text
+        .parse()
+        .unwrap_or_else(|_| panic!("`{text}` is not a number"));
+    let decimals = text
+        .split_once('.')
+        .map_or(0, |(_, fraction)| fraction.len());
+    (number, decimals)
+}
+
+/// `X10` is axis X with 10; an axis name with digits is written with `=`: `X1=10`, `X1=?`.
+fn split_axis_word(word: &str) -> (&str, &str) {
+    match word.split_once('=') {
+        Some(parts) => parts,
+        None => word.split_at(
+            word.find(|c: char| !c.is_ascii_alphabetic())
+                .unwrap_or(word.len()),
+        ),
+    }
 }
 
 fn parse_expectation(comment: &str) -> Expectation {
@@ -27,6 +65,11 @@ fn parse_expectation(comment: &str) -> Expectation {
         None => (comment, ""),
     };
     if let Some(position) = moves_part.find("=>") {
+        if moves_part[position + 2..].trim() == "none" {
+            expectation.no_move = true;
+            expectation.codes = codes_part.split_whitespace().map(str::to_string).collect();
+            return expectation;
+        }
         expectation.moves = true;
         let mut in_machine = false;
         for word in moves_part[position + 2..].split_whitespace() {
@@ -34,10 +77,27 @@ fn parse_expectation(comment: &str) -> Expectation {
                 in_machine = true;
                 continue;
             }
-            let (name, value) = word.split_at(
-                word.find(|c: char| !c.is_ascii_alphabetic())
-                    .unwrap_or(word.len()),
-            );
+            if word == "ARC" {
+                expectation.arc = Some(ArcExpectation::default());
+                continue;
+            }
+            if let Some(arc) = expectation.arc.as_mut() {
+                if word == "CW" || word == "CCW" {
+                    arc.clockwise = Some(word == "CW");
+                } else if word == "MCSCW" || word == "MCSCCW" {
+                    arc.machine_clockwise = Some(word == "MCSCW");
+                } else if let Some(value) = word.strip_prefix("SWEEP") {
+                    arc.sweep = Some(written_number(value));
+                } else if let Some(value) = word.strip_prefix('R') {
+                    arc.radius = Some(written_number(value));
+                } else {
+                    let (name, value) = split_axis_word(word);
+                    arc.centre
+                        .push((name.to_string(), Some(written_number(value))));
+                }
+                continue;
+            }
+            let (name, value) = split_axis_word(word);
             if name == "F" {
                 expectation.feed = Some(value.parse().expect("a number after F"));
             } else if value == "?" {
@@ -82,7 +142,15 @@ fn matches_written(actual: f64, expected: f64, decimals: usize) -> bool {
 
 fn check_fixture(path: &Path) -> Vec<String> {
     let text = std::fs::read_to_string(path).expect("fixture is readable");
-    let config = if text.starts_with("; config: turn") {
+    // `; toml: ...` lines give the machine configuration as sinumerik.toml would.
+    let toml: String = text
+        .lines()
+        .filter_map(|line| line.strip_prefix("; toml: "))
+        .flat_map(|line| [line, "\n"])
+        .collect();
+    let config = if !toml.is_empty() {
+        parse_config_text(&toml, path).unwrap_or_else(|error| panic!("{error}"))
+    } else if text.starts_with("; config: turn") {
         MachineConfig::turn()
     } else {
         MachineConfig::mill()
@@ -117,6 +185,19 @@ fn check_fixture(path: &Path) -> Vec<String> {
                 expectation.codes,
                 reported
             ));
+        }
+        if expectation.no_move {
+            if analysis
+                .moves
+                .iter()
+                .any(|movement| movement.line == line_index)
+            {
+                failures.push(format!(
+                    "{name}:{}: expected no move, found one",
+                    line_index + 1
+                ));
+            }
+            continue;
         }
         if !expectation.moves {
             continue;
@@ -192,6 +273,65 @@ fn compare_move(
             ));
         }
     }
+    if let Some(expected) = &expectation.arc {
+        match &movement.arc {
+            None => failures.push(format!("{at}: expected an arc, found none")),
+            Some(arc) => {
+                for (axis, value) in &expected.centre {
+                    let actual = arc
+                        .centre
+                        .iter()
+                        .find(|(name, _)| name.as_ref() == axis.as_str())
+                        .map(|(_, value)| *value);
+                    let agrees = match (value, actual) {
+                        (Some((value, decimals)), Some(actual)) => {
+                            matches_written(actual, *value, *decimals)
+                        }
+                        _ => false,
+                    };
+                    if !agrees {
+                        failures.push(format!(
+                            "{at}: arc centre {axis} expected {value:?}, got {actual:?}"
+                        ));
+                    }
+                }
+                if let Some((radius, decimals)) = expected.radius {
+                    if !matches_written(arc.radius, radius, decimals) {
+                        failures.push(format!(
+                            "{at}: arc radius expected {radius}, got {}",
+                            arc.radius
+                        ));
+                    }
+                }
+                if let Some((sweep, decimals)) = expected.sweep {
+                    if !matches_written(arc.sweep, sweep, decimals) {
+                        failures.push(format!(
+                            "{at}: arc sweep expected {sweep}, got {}",
+                            arc.sweep
+                        ));
+                    }
+                }
+                if expected
+                    .machine_clockwise
+                    .is_some_and(|clockwise| Some(clockwise) != arc.machine_clockwise)
+                {
+                    failures.push(format!(
+                        "{at}: machine arc direction expected {:?}, got {:?}",
+                        expected.machine_clockwise, arc.machine_clockwise
+                    ));
+                }
+                if expected
+                    .clockwise
+                    .is_some_and(|clockwise| clockwise != arc.clockwise)
+                {
+                    failures.push(format!(
+                        "{at}: arc direction expected {:?}, got clockwise = {}",
+                        expected.clockwise, arc.clockwise
+                    ));
+                }
+            }
+        }
+    }
     if let Some(expected) = expectation.feed {
         if !movement.feed.is_some_and(|feed| close(feed, expected)) {
             failures.push(format!(
@@ -243,9 +383,19 @@ fn the_harness_notices_a_wrong_expectation() {
     let folder = std::env::temp_dir().join(format!("sinumerik-conformance-{}", std::process::id()));
     std::fs::create_dir_all(&folder).unwrap();
     let path = folder.join("WRONG.MPF");
-    std::fs::write(&path, "N10 G0 X10 ; => X11\nN20 G91 Y5 ; => Y5\n").unwrap();
+    std::fs::write(
+        &path,
+        "; toml: [offsets]\n; toml: G54 = { X = 100 }\nN10 G0 X10 ; => X11\nN20 G91 Y5 ; => Y5\nN30 G90 G54 X0 ; => none\nN40 X1 ; => MCS X1\nN50 G0 Y0\nN60 G2 X21 I10 J0 F100 ; => ARC X12 R10 CCW\nN70 MIRROR X0\nN80 G2 X-1 I10 J0 ; => ARC R10 CW MCSCW\n",
+    )
+    .unwrap();
     let failures = check_fixture(&path);
     std::fs::remove_dir_all(&folder).unwrap();
-    assert_eq!(failures.len(), 3, "{failures:?}");
+    assert_eq!(failures.len(), 8, "{failures:?}");
+    assert!(failures[5].contains("arc centre X"), "{failures:?}");
+    assert!(failures[6].contains("arc direction"), "{failures:?}");
+    assert!(
+        failures[7].contains("machine arc direction"),
+        "{failures:?}"
+    );
     assert!(failures[0].contains("X expected 11"), "{failures:?}");
 }

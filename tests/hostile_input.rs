@@ -10,11 +10,15 @@ use sinumerik_lsp::cli::source_file::{decode_source, decode_windows_1252, Source
 use sinumerik_lsp::config::MachineConfig;
 use sinumerik_lsp::diagnostics::{Code, Diagnostic, LineDiagnostic, Span};
 use sinumerik_lsp::syntax::ast::{
-    AddressKind, Expr, ExprKind, Extension, JumpTarget, Statement, StructureKeyword, ValueExpr,
+    AddressKind, Expr, ExprKind, JumpTarget, Statement, StructureKeyword, ValueExpr,
 };
 use sinumerik_lsp::syntax::parser::MAX_EXPRESSION_DEPTH;
 use sinumerik_lsp::syntax::{check_program, lines, Block, LineParser, SyntaxContext};
 use std::process::Command;
+
+/// The span checks the fuzzer applies, shared so that both check the same spans.
+#[path = "../examples/fuzz/spans.rs"]
+mod fuzz_spans;
 use std::time::{Duration, Instant};
 
 /// The size of the "5 MB" lines of the issue.
@@ -72,85 +76,16 @@ fn check(text: &str) -> Vec<LineDiagnostic> {
     diagnostics
 }
 
-fn assert_span_valid(line: &str, span: Span, what: &str) {
-    let (start, end) = (span.start(), span.end());
-    assert!(
-        start <= end && end <= line.len(),
-        "{what}: span {start}..{end} is not inside the line of {} bytes",
-        line.len()
-    );
-    assert!(
-        line.is_char_boundary(start) && line.is_char_boundary(end),
-        "{what}: span {start}..{end} does not lie on character boundaries of {:?}",
-        abbreviate(line)
-    );
-}
-
 fn assert_diagnostic_spans_valid(line: &str, diagnostics: &[Diagnostic]) {
-    for diagnostic in diagnostics {
-        let what = format!("diagnostic {}", diagnostic.code.as_str());
-        assert_span_valid(line, diagnostic.span, &what);
-        if let Some(fix) = &diagnostic.fix {
-            for edit in &fix.edits {
-                assert_span_valid(line, edit.span, &format!("fix of {what}"));
-            }
-        }
+    if let Err(problem) = fuzz_spans::check_diagnostic_spans(line, diagnostics) {
+        panic!("{problem} in {:?}", abbreviate(line));
     }
 }
 
 /// Every span a block holds: its markers, its statements with their parts, and its expression nodes.
 fn assert_block_spans_valid(line: &str, block: &Block) {
-    let mut spans: Vec<Span> = Vec::new();
-    spans.extend(block.skip.map(|(_, span)| span));
-    spans.extend(block.number.map(|number| number.span));
-    spans.extend(block.label);
-    spans.extend(block.comment);
-    for statement in &block.statements {
-        spans.push(statement.span());
-        match statement {
-            Statement::Address(word) => {
-                spans.push(word.name);
-                match &word.extension {
-                    Some(Extension::Number { span, .. }) | Some(Extension::Index { span, .. }) => {
-                        spans.push(*span)
-                    }
-                    None => {}
-                }
-                spans.extend(word.value.modifier.map(|(_, span)| span));
-                if let ValueExpr::Constant { span, .. } = word.value.expr {
-                    spans.push(span);
-                }
-            }
-            Statement::Assignment { target_span, .. } => spans.push(*target_span),
-            Statement::Jump { target, .. } => match target {
-                JumpTarget::Label(span) | JumpTarget::BlockNumber { span, .. } => spans.push(*span),
-                JumpTarget::Computed(_) | JumpTarget::None => {}
-            },
-            Statement::Call { name, .. }
-            | Statement::ExternDeclaration { name, .. }
-            | Statement::MacroDefinition { name, .. } => spans.extend(*name),
-            Statement::Definition { names, .. } => spans.extend(names),
-            Statement::ProcedureHeader {
-                name, parameters, ..
-            } => {
-                spans.extend(*name);
-                spans.extend(parameters);
-            }
-            Statement::Instruction { name, .. } => spans.push(*name),
-            _ => {}
-        }
-        if let Statement::MacroDefinition { body, .. } = statement {
-            spans.push(*body);
-        }
-    }
-    for Expr { kind, span } in &block.exprs {
-        spans.push(*span);
-        if let ExprKind::Call { name, .. } = kind {
-            spans.push(*name);
-        }
-    }
-    for span in spans {
-        assert_span_valid(line, span, "block");
+    if let Err(problem) = fuzz_spans::check_block_spans(line, block) {
+        panic!("{problem} in {:?}", abbreviate(line));
     }
 }
 
@@ -607,7 +542,9 @@ fn five_megabyte_identifier_is_one_name() {
 }
 
 #[test]
-fn five_megabyte_and_ten_thousand_digit_numbers_are_one_number_each() {
+fn five_megabyte_and_ten_thousand_digit_numbers_are_s133_and_unknown() {
+    // Such a number lies beyond the range of a double: it used to become infinity silently. It is one
+    // number token, reported once (S133), and its value is an error node, so no position is made of it.
     for digits in [10_000, FIVE_MB] {
         let number = "7".repeat(digits);
         for line in [format!("X{number}"), format!("X={number}")] {
@@ -616,29 +553,26 @@ fn five_megabyte_and_ten_thousand_digit_numbers_are_one_number_each() {
                 [Statement::Address(word)] => word.value.expr,
                 _ => panic!("{} is not one address word", abbreviate(&line)),
             };
-            // Without `=` the value is a constant kept in the word, with `=` an expression node.
-            let value_span = match value {
-                ValueExpr::Constant { span, .. } => Some(span),
+            let error_span = match value {
                 ValueExpr::Expr(id) => match block.expr(id) {
                     Expr {
-                        kind: ExprKind::Number(_),
+                        kind: ExprKind::Error,
                         span,
                     } => Some(*span),
                     _ => None,
                 },
-                ValueExpr::Missing => None,
+                _ => None,
             };
             assert_eq!(
-                value_span.map(|span| span.end() - span.start()),
+                error_span.map(|span| span.end() - span.start()),
                 Some(digits),
                 "{}",
                 abbreviate(&line)
             );
-            let expected: Vec<&str> = if line.len() > 512 {
-                vec!["S163"]
-            } else {
-                vec![]
-            };
+            let mut expected = vec!["S133"];
+            if line.len() > 512 {
+                expected.insert(0, "S163");
+            }
             assert_eq!(codes(&diagnostics), expected, "{}", abbreviate(&line));
         }
         // Block numbers, G numbers and R parameter numbers must be whole numbers that fit: S133.
@@ -657,6 +591,55 @@ fn five_megabyte_and_ten_thousand_digit_numbers_are_one_number_each() {
             );
             assert_eq!(diagnostics.len(), 1 + usize::from(line.len() > 512));
         }
+    }
+}
+
+#[test]
+fn numbers_beyond_the_range_of_a_double_are_s133_and_never_a_position() {
+    let config = MachineConfig::default();
+    for (line, s133) in [
+        ("G0 X1EX400", 1),
+        ("G0 X=-1EX99999999999", 1),
+        ("G0 X=AC(1EX400)", 1),
+        ("G0 X='HFFFFFFFFFFFFFFFFFFFF'", 1),
+        ("G0 X=2*1EX308", 0),
+        ("G0 X1EX308\nG91 X1EX308", 0),
+    ] {
+        let program = line;
+        let diagnostics = check(program);
+        assert_eq!(
+            diagnostics
+                .iter()
+                .filter(|item| item.diagnostic.code == Code::InvalidNumber)
+                .count(),
+            s133,
+            "{line}: {:?}",
+            diagnostics
+                .iter()
+                .map(|item| item.diagnostic.code)
+                .collect::<Vec<_>>()
+        );
+        // The last move's X is unknown: left out of the end point and named as uncertain.
+        let analysis = sinumerik_lsp::analysis::analyze(program, &config);
+        let last = analysis.moves.last().expect("the program moves");
+        assert!(
+            last.end.iter().all(|(name, _)| &**name != "X")
+                && last.uncertain.iter().any(|name| &**name == "X"),
+            "{line}: {last:?}"
+        );
+        for movement in &analysis.moves {
+            assert!(movement.end.iter().all(|(_, value)| value.is_finite()));
+        }
+    }
+    // Just inside the range the value is kept, and a zero with a huge exponent is zero (it was NaN).
+    for (line, expected) in [
+        ("G0 X1EX308", 1e308),
+        ("G0 X0EX400", 0.0),
+        ("G0 X1EX-400", 0.0),
+    ] {
+        let analysis = sinumerik_lsp::analysis::analyze(line, &config);
+        assert_eq!(analysis.moves[0].end[0].1, expected, "{line}");
+        assert!(check(line).is_empty(), "{line}");
     }
 }
 

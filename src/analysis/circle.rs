@@ -23,6 +23,147 @@ pub enum CircleError {
     RadiusTooSmall { chord: f64, radius: f64 },
     /// CR with the end point equal to the start point (alarm 14040): CR cannot make a full circle.
     RadiusFullCircle,
+    /// An opening angle AR outside 0 < AR < 360, or AR with the end point equal to the start point.
+    OpeningAngleOutOfRange,
+    /// CIP with its three points on one line, the intermediate point not between the others
+    /// (alarm 14920).
+    IntermediatePointOnLine,
+}
+
+/// A circle by its opening angle AR (degrees) from `start` to `end` (reference §6.2): the radius is
+/// `chord / (2 sin(AR/2))`; the centre lies on the chord's bisector, to the left of the chord for a
+/// counter-clockwise arc of at most 180°, to the other side beyond 180°.
+pub fn from_opening_angle(
+    start: (f64, f64),
+    end: (f64, f64),
+    degrees: f64,
+    clockwise: bool,
+) -> Result<Circle, CircleError> {
+    let chord = (end.0 - start.0).hypot(end.1 - start.1);
+    if !(degrees > 0.0 && degrees < 360.0) || chord <= 1e-9 {
+        return Err(CircleError::OpeningAngleOutOfRange);
+    }
+    let half = (degrees / 2.0).to_radians();
+    let radius = chord / (2.0 * half.sin());
+    // Signed: negative beyond 180°, which puts the centre on the other side of the chord.
+    let height = radius * half.cos();
+    let middle = ((start.0 + end.0) / 2.0, (start.1 + end.1) / 2.0);
+    let normal = (-(end.1 - start.1) / chord, (end.0 - start.0) / chord);
+    let side = if clockwise { -1.0 } else { 1.0 };
+    let centre = (
+        middle.0 + side * height * normal.0,
+        middle.1 + side * height * normal.1,
+    );
+    Ok(Circle {
+        centre,
+        radius,
+        clockwise,
+        sweep: degrees,
+    })
+}
+
+/// A circle by its opening angle AR and its centre: the end point is the start turned about the
+/// centre by AR, clockwise for G2 (reference §6.2).
+pub fn from_opening_angle_and_centre(
+    start: (f64, f64),
+    centre: (f64, f64),
+    degrees: f64,
+    clockwise: bool,
+) -> Result<((f64, f64), Circle), CircleError> {
+    let radius = (start.0 - centre.0).hypot(start.1 - centre.1);
+    if !(degrees > 0.0 && degrees < 360.0) || radius <= 1e-9 {
+        return Err(CircleError::OpeningAngleOutOfRange);
+    }
+    let signed = if clockwise { -degrees } else { degrees };
+    let (sin, cos) = signed.to_radians().sin_cos();
+    let (dx, dy) = (start.0 - centre.0, start.1 - centre.1);
+    let end = (
+        centre.0 + dx * cos - dy * sin,
+        centre.1 + dx * sin + dy * cos,
+    );
+    Ok((
+        end,
+        Circle {
+            centre,
+            radius,
+            clockwise,
+            sweep: degrees,
+        },
+    ))
+}
+
+/// The circle of CIP through `start`, the intermediate point `via` and `end` (reference §6.2); its
+/// direction is the order of the three points. `Ok(None)` when the points lie on one line with the
+/// intermediate point between the others: the control then moves along the straight line.
+pub fn through_points(
+    start: (f64, f64),
+    via: (f64, f64),
+    end: (f64, f64),
+) -> Result<Option<Circle>, CircleError> {
+    let first = (via.0 - start.0, via.1 - start.1);
+    let second = (end.0 - start.0, end.1 - start.1);
+    let cross = first.0 * second.1 - first.1 * second.0;
+    let scale = first.0.hypot(first.1).max(second.0.hypot(second.1));
+    if cross.abs() <= 1e-9 * scale * scale.max(1.0) {
+        let along = first.0 * second.0 + first.1 * second.1;
+        let length = second.0 * second.0 + second.1 * second.1;
+        return if length > 1e-18 && along >= 0.0 && along <= length {
+            Ok(None)
+        } else {
+            Err(CircleError::IntermediatePointOnLine)
+        };
+    }
+    // The circumcentre, relative to the start point.
+    let denominator = 2.0 * cross;
+    let first_square = first.0 * first.0 + first.1 * first.1;
+    let second_square = second.0 * second.0 + second.1 * second.1;
+    let centre_x = (second.1 * first_square - first.1 * second_square) / denominator;
+    let centre_y = (first.0 * second_square - second.0 * first_square) / denominator;
+    let centre = (start.0 + centre_x, start.1 + centre_y);
+    let clockwise = cross < 0.0;
+    Ok(Some(Circle {
+        centre,
+        radius: centre_x.hypot(centre_y),
+        clockwise,
+        sweep: sweep_degrees(start, end, centre, clockwise),
+    }))
+}
+
+/// The circle of CT: tangent at `start` to the direction `tangent` of the previous path element and
+/// through `end` (reference §6.2); `None` when the end lies on the tangent (a straight line).
+pub fn tangential(start: (f64, f64), tangent: (f64, f64), end: (f64, f64)) -> Option<Circle> {
+    let length = tangent.0.hypot(tangent.1);
+    if length <= 1e-12 {
+        return None;
+    }
+    // The unit normal to the left of the tangent.
+    let normal = (-tangent.1 / length, tangent.0 / length);
+    let chord = (end.0 - start.0, end.1 - start.1);
+    let across = chord.0 * normal.0 + chord.1 * normal.1;
+    let chord_square = chord.0 * chord.0 + chord.1 * chord.1;
+    if across.abs() <= 1e-9 * chord_square.sqrt().max(1.0) {
+        return None;
+    }
+    // The centre is at signed distance s along the normal with |C - end| = |s|.
+    let distance = chord_square / (2.0 * across);
+    let centre = (start.0 + distance * normal.0, start.1 + distance * normal.1);
+    let clockwise = distance < 0.0;
+    Some(Circle {
+        centre,
+        radius: distance.abs(),
+        clockwise,
+        sweep: sweep_degrees(start, end, centre, clockwise),
+    })
+}
+
+/// The direction of travel at the end of a circle, for a following CT.
+pub fn end_tangent(circle: &Circle, end: (f64, f64)) -> (f64, f64) {
+    let radial = (end.0 - circle.centre.0, end.1 - circle.centre.1);
+    if circle.clockwise {
+        (radial.1, -radial.0)
+    } else {
+        (-radial.1, radial.0)
+    }
 }
 
 /// The tolerance of MD21000/MD21010 for a radius: `max(CONST, FACTOR × r)`.
@@ -161,6 +302,59 @@ mod tests {
         let circle = from_radius((0.0, 0.0), (20.0, 0.0), 10.0, true, 0.01, 0.001).unwrap();
         assert!(near(circle.centre.0, 10.0) && near(circle.centre.1, 0.0));
         assert!(near(circle.sweep, 180.0));
+    }
+
+    #[test]
+    fn opening_angle_cip_and_ct() {
+        // T19: G3 X20 Y0 AR=180 from (0, 0): centre (10, 0), r 10.
+        let circle = from_opening_angle((0.0, 0.0), (20.0, 0.0), 180.0, false).unwrap();
+        assert!(
+            near(circle.centre.0, 10.0) && near(circle.centre.1, 0.0) && near(circle.radius, 10.0)
+        );
+        // AR=90 counter-clockwise to (10, 10): the centre of T10; AR=270: the centre of T11.
+        let circle = from_opening_angle((0.0, 0.0), (10.0, 10.0), 90.0, false).unwrap();
+        assert!(
+            near(circle.centre.0, 0.0) && near(circle.centre.1, 10.0),
+            "{circle:?}"
+        );
+        let circle = from_opening_angle((0.0, 0.0), (10.0, 10.0), 270.0, false).unwrap();
+        assert!(
+            near(circle.centre.0, 10.0) && near(circle.centre.1, 0.0),
+            "{circle:?}"
+        );
+        assert_eq!(
+            from_opening_angle((0.0, 0.0), (10.0, 10.0), 360.0, false),
+            Err(CircleError::OpeningAngleOutOfRange)
+        );
+        // T20: G3 I-10 J0 AR=90 from (10, 0): end (0, 10).
+        let (end, _) = from_opening_angle_and_centre((10.0, 0.0), (0.0, 0.0), 90.0, false).unwrap();
+        assert!(near(end.0, 0.0) && near(end.1, 10.0), "{end:?}");
+        let (end, _) = from_opening_angle_and_centre((10.0, 0.0), (0.0, 0.0), 90.0, true).unwrap();
+        assert!(near(end.0, 0.0) && near(end.1, -10.0), "{end:?}");
+        // T22: CIP from (30, 40) through (40, 45) to (50, 40): centre (40, 32.5), r 12.5, clockwise.
+        let circle = through_points((30.0, 40.0), (40.0, 45.0), (50.0, 40.0))
+            .unwrap()
+            .unwrap();
+        assert!(
+            near(circle.centre.0, 40.0) && near(circle.centre.1, 32.5) && near(circle.radius, 12.5)
+        );
+        assert!(circle.clockwise);
+        // T24: collinear with the intermediate point beyond the end; between: a straight line.
+        assert_eq!(
+            through_points((0.0, 0.0), (30.0, 0.0), (20.0, 0.0)),
+            Err(CircleError::IntermediatePointOnLine)
+        );
+        assert_eq!(
+            through_points((0.0, 0.0), (10.0, 0.0), (20.0, 0.0)),
+            Ok(None)
+        );
+        // T25: CT from (10, 0) after a move along +X to (20, 10): centre (10, 10), counter-clockwise.
+        let circle = tangential((10.0, 0.0), (1.0, 0.0), (20.0, 10.0)).unwrap();
+        assert!(near(circle.centre.0, 10.0) && near(circle.centre.1, 10.0) && !circle.clockwise);
+        assert!(near(circle.sweep, 90.0));
+        let tangent = end_tangent(&circle, (20.0, 10.0));
+        assert!(near(tangent.0, 0.0) && tangent.1 > 0.0, "{tangent:?}");
+        assert_eq!(tangential((0.0, 0.0), (1.0, 0.0), (5.0, 0.0)), None);
     }
 
     #[test]

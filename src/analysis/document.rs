@@ -1,24 +1,52 @@
 //! The analysis of one open document, kept up to date as the text changes: what the language server
 //! asks of the core. The text itself stays with the caller (a rope in the server, a string in tests)
-//! and is read through [`LineSource`]; this type keeps only what it derived from it.
+//! and is read through [`LineSource`]; this type keeps only what it derived from it: the diagnostics,
+//! a few flags per line, and checkpoints of the modal state every [`CHECKPOINT_INTERVAL`] lines.
 //!
-//! This first version recomputes the whole analysis on every update; the interface is the one the
-//! incremental version keeps (edits by line range, lazy replay for a block's report).
+//! An edit re-reads the lines from the checkpoint before it and stops at the first later checkpoint
+//! whose state the new pass reproduces exactly: from there on every block resolves as before, so the
+//! old diagnostics are kept, moved by the number of lines inserted or removed. A block's report (for a
+//! hover) replays at most one interval from the nearest checkpoint. The result is always the one a
+//! from-scratch analysis of the same text gives (tested on random edits).
 
-use crate::analysis::engine::Engine;
+use crate::analysis::engine::{Engine, EngineSnapshot};
+use crate::analysis::position_reads::{
+    position_reads as position_reads_of, shifted_axes, READS_ALL,
+};
+pub use crate::analysis::resolution::{ResolutionMode, WordResolution};
 use crate::analysis::state::{ModalState, Pole};
-use crate::analysis::{analyze_program, Move, ProgramKind};
+use crate::analysis::{is_proc_header, Move, ProgramKind};
 use crate::config::MachineConfig;
 use crate::diagnostics::LineDiagnostic;
-use crate::syntax::lines;
+use crate::syntax::structure::StructureChecker;
+use crate::syntax::{lines, macro_defined_by, Block, LineParser, SyntaxContext};
 use std::borrow::Cow;
 use std::ops::Range;
 use std::sync::Arc;
+
+/// Lines between two checkpoints of the modal state. A hover replays at most this many blocks (about
+/// 0.1 ms); memory is one modal state per interval.
+pub const CHECKPOINT_INTERVAL: usize = 512;
+
+/// A line defines a macro: every line may read differently, so the whole document is analysed again.
+const DEFINES_MACRO: u8 = 1;
+/// A line is a `PROC` header: the document is a subprogram, and starts from another state.
+const PROC_HEADER: u8 = 2;
 
 /// Read access to the lines of a document. Line `index` is returned without its line terminator.
 pub trait LineSource {
     fn line_count(&self) -> usize;
     fn line(&self, index: usize) -> Cow<'_, str>;
+
+    /// Hands the lines from `start` on to `visit`, in order, until it returns false or the lines end.
+    /// A source that can walk its lines faster than by index (a rope) overrides this.
+    fn for_each_line(&self, start: usize, visit: &mut dyn FnMut(usize, &str) -> bool) {
+        for index in start..self.line_count() {
+            if !visit(index, &self.line(index)) {
+                return;
+            }
+        }
+    }
 }
 
 /// A whole text in memory, split as the control splits blocks (LF, CRLF, lone CR).
@@ -94,53 +122,51 @@ pub struct BlockReport {
     pub words: Vec<WordResolution>,
 }
 
-/// How the value of an axis word is read (reference §3).
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum ResolutionMode {
-    /// Modal G90: the value is the end point.
-    Absolute,
-    /// Modal G91: the value is added to the last position.
-    Incremental,
-    /// A non-modal override written on the word: `AC`, `IC`, `DC`, `ACP`, `ACN`, `DAC`, `DIC`, `RAC`,
-    /// `RIC`, `CAC`, `CIC`, `CACP`, `CACN`, `CDC`.
-    Override(crate::syntax::ast::Modifier),
-    /// G53, G153 or SUPA in the block: the value is a machine position.
-    Machine,
-    /// The mode is inherited from an unseen caller (a subprogram that has not programmed G90/G91).
-    Unknown,
-}
-
-/// The resolution of one axis word, with the steps a person needs to follow it.
-#[derive(Debug, Clone, PartialEq)]
-pub struct WordResolution {
-    /// The word's byte span within the line.
-    pub span: crate::diagnostics::Span,
-    /// The axis name in upper case (`X`, `Z1`).
-    pub axis: String,
-    /// The value as written (after evaluating an expression), in the program's units; `None` when it
-    /// depends on something unknown.
-    pub programmed: Option<f64>,
-    pub mode: ResolutionMode,
-    /// The factor from program units to the basic system (25.4 under G70 on a metric machine).
-    pub unit_factor: Option<f64>,
-    /// Whether the value was read as a diameter (DIAMON, DIAM90 absolute, DAC, DIC).
-    pub read_as_diameter: bool,
-    /// The axis position before the block, as the program shows it (a diameter under DIAMON).
-    pub start: Option<f64>,
-    /// The resolved end point, as the program shows it.
-    pub end: Option<f64>,
-    /// The end point after the programmable frame (machine coordinates, a radius on transverse axes).
-    pub machine: Option<f64>,
-    /// Why the end point is unknown, when it is.
-    pub unknown_reason: Option<String>,
+/// The state before one line: where the analysis can start again.
+#[derive(Debug, Clone)]
+struct Checkpoint {
+    line: usize,
+    engine: EngineSnapshot,
+    structure: StructureChecker,
 }
 
 /// The analysis of a document.
 pub struct DocumentAnalysis {
     config: Arc<MachineConfig>,
     kind: ProgramKind,
+    /// The parser's view of the configuration, with the macros the document defines.
+    context: SyntaxContext,
+    /// Whether the document starts from a caller's state (a subprogram, or a `PROC` header).
+    subprogram: bool,
+    /// Per line: [`DEFINES_MACRO`], [`PROC_HEADER`].
+    line_flags: Vec<u8>,
+    /// Sorted by line; the first is always line 0.
+    checkpoints: Vec<Checkpoint>,
+    /// The findings of single lines (syntax, structure, semantics), sorted by line and column.
+    body: Vec<LineDiagnostic>,
+    /// Per line: the axes its block reads absolutely (see [`position_reads_of`]).
+    position_reads: Vec<u8>,
+    /// The findings made at the end of the program (structures never closed), at their lines.
+    tail: Vec<LineDiagnostic>,
+    /// `body` and `tail` together, sorted as a from-scratch analysis sorts them, when `tail` is not
+    /// empty.
+    combined: Option<Vec<LineDiagnostic>>,
+    /// How many lines the last update or analysis read, for benchmarks and tests.
+    lines_read: usize,
+}
+
+/// What one forward pass found.
+struct Pass {
+    lines_read: usize,
+    checkpoints: Vec<Checkpoint>,
     diagnostics: Vec<LineDiagnostic>,
-    moves: Vec<Move>,
+    /// Line ranges (new numbering) whose old findings stay, because a shift was carried across them.
+    kept: Vec<Range<usize>>,
+    /// The line at which the pass met an old checkpoint with the same state (new numbering), or
+    /// `None` when it ran to the end of the document.
+    converged_at: Option<usize>,
+    /// The end-of-program findings, when the pass ran to the end.
+    tail: Vec<LineDiagnostic>,
 }
 
 impl DocumentAnalysis {
@@ -150,18 +176,27 @@ impl DocumentAnalysis {
         config: Arc<MachineConfig>,
         kind: ProgramKind,
     ) -> DocumentAnalysis {
+        let context = SyntaxContext::new(&config);
         let mut analysis = DocumentAnalysis {
             config,
             kind,
-            diagnostics: Vec::new(),
-            moves: Vec::new(),
+            context,
+            subprogram: false,
+            line_flags: Vec::new(),
+            position_reads: Vec::new(),
+            checkpoints: Vec::new(),
+            body: Vec::new(),
+            tail: Vec::new(),
+            combined: None,
+            lines_read: 0,
         };
         analysis.recompute(source);
         analysis
     }
 
     /// The text changed: lines `first_line .. first_line + removed` of the old text were replaced by
-    /// the `inserted` lines now at `first_line .. first_line + inserted` of `source`.
+    /// the `inserted` lines now at `first_line .. first_line + inserted` of `source`. A range that does
+    /// not fit the old and new line counts makes the whole document be analysed again.
     pub fn update(
         &mut self,
         source: &dyn LineSource,
@@ -169,8 +204,108 @@ impl DocumentAnalysis {
         removed: usize,
         inserted: usize,
     ) {
-        let _ = (first_line, removed, inserted);
-        self.recompute(source);
+        let old_count = self.line_flags.len();
+        let new_count = source.line_count();
+        let fits = first_line
+            .checked_add(removed)
+            .is_some_and(|end| end <= old_count)
+            && old_count - removed + inserted == new_count;
+        if !fits {
+            self.recompute(source);
+            return;
+        }
+        let removed_flags = self.line_flags[first_line..first_line + removed]
+            .iter()
+            .any(|flags| *flags != 0);
+        let inserted_flags: Vec<u8> = (first_line..first_line + inserted)
+            .map(|index| line_flags_of(&source.line(index)))
+            .collect();
+        if removed_flags || inserted_flags.iter().any(|flags| *flags != 0) {
+            // A macro or a PROC header appeared or went: every line may read differently.
+            self.recompute(source);
+            return;
+        }
+        self.line_flags
+            .splice(first_line..first_line + removed, inserted_flags);
+        let delta = inserted as isize - removed as isize;
+        let old_region_end = first_line + removed;
+        // Checkpoints at or before the first changed line stay valid; those after the changed lines
+        // move with their lines and are what the new pass compares with; those inside are dropped.
+        let keep = self
+            .checkpoints
+            .partition_point(|checkpoint| checkpoint.line <= first_line);
+        let mut later: Vec<Checkpoint> = self
+            .checkpoints
+            .drain(keep..)
+            .filter(|checkpoint| checkpoint.line >= old_region_end)
+            .collect();
+        for checkpoint in &mut later {
+            checkpoint.line = checkpoint.line.saturating_add_signed(delta);
+            checkpoint.structure.shift_lines(old_region_end, delta);
+        }
+        // Lines the edit inserted are read by the pass; until then they count as reading everything.
+        self.position_reads.splice(
+            first_line..first_line + removed,
+            std::iter::repeat_n(READS_ALL, inserted),
+        );
+        let start = self.checkpoints[keep - 1].clone();
+        let mut position_reads = std::mem::take(&mut self.position_reads);
+        let pass = self.run_pass(
+            source,
+            start.clone(),
+            first_line + inserted,
+            &mut later,
+            &mut position_reads,
+        );
+        self.position_reads = position_reads;
+        // Diagnostics: those before the pass's start stay; the pass's replace what it re-read; the
+        // old ones of the intervals it carried a shift across, and of everything after the point of
+        // convergence, stay with their lines moved.
+        let prefix_end = self.body.partition_point(|item| item.line < start.line);
+        let old_rest: Vec<LineDiagnostic> = self.body.drain(prefix_end..).collect();
+        let mut kept_ranges = pass.kept.iter().peekable();
+        let converged_at = pass.converged_at;
+        let kept = old_rest.into_iter().filter_map(|mut item| {
+            if item.line < old_region_end {
+                return None;
+            }
+            item.line = item.line.saturating_add_signed(delta);
+            if converged_at.is_some_and(|line| item.line >= line) {
+                return Some(item);
+            }
+            while kept_ranges
+                .next_if(|range| range.end <= item.line)
+                .is_some()
+            {}
+            kept_ranges
+                .peek()
+                .is_some_and(|range| range.contains(&item.line))
+                .then_some(item)
+        });
+        merge_by_line(&mut self.body, pass.diagnostics, kept);
+        match pass.converged_at {
+            Some(converged_line) => {
+                for item in &mut self.tail {
+                    if item.line >= old_region_end {
+                        item.line = item.line.saturating_add_signed(delta);
+                    }
+                }
+                let index = later.partition_point(|checkpoint| checkpoint.line < converged_line);
+                self.checkpoints.extend(pass.checkpoints);
+                self.checkpoints.extend(later.drain(index..));
+            }
+            None => {
+                self.tail = pass.tail;
+                self.checkpoints.extend(pass.checkpoints);
+            }
+        }
+        self.lines_read = pass.lines_read;
+        self.combine();
+    }
+
+    /// How many lines the last update (or the first analysis) read: the cost of an edit.
+    pub fn lines_read_by_last_update(&self) -> usize {
+        self.lines_read
     }
 
     /// The configuration this document is analysed with.
@@ -185,76 +320,346 @@ impl DocumentAnalysis {
 
     /// Every diagnostic of the document, sorted by line and column, severities configured.
     pub fn diagnostics(&self) -> &[LineDiagnostic] {
-        &self.diagnostics
+        self.combined.as_deref().unwrap_or(&self.body)
     }
 
     /// The moves of the blocks in `lines` (0-based, end exclusive), in program order.
-    pub fn moves(&self, _source: &dyn LineSource, lines: Range<usize>) -> Vec<Move> {
-        self.moves
-            .iter()
-            .filter(|movement| lines.contains(&movement.line))
-            .cloned()
-            .collect()
+    pub fn moves(&self, source: &dyn LineSource, lines: Range<usize>) -> Vec<Move> {
+        let mut moves = Vec::new();
+        self.visit_moves(source, lines, &mut |movement| moves.push(movement.clone()));
+        moves
     }
 
-    /// The state before and after the block on `line`, and its move. A line past the end reports the
-    /// state at the end of the program.
+    /// Hands the moves of the blocks in `lines` to `visit` one at a time, in program order, without
+    /// keeping them: the preview of a program of any length needs memory for one move.
+    pub fn visit_moves(
+        &self,
+        source: &dyn LineSource,
+        lines: Range<usize>,
+        visit: &mut dyn FnMut(&Move),
+    ) {
+        let end = lines.end.min(source.line_count());
+        if lines.start >= end {
+            return;
+        }
+        let checkpoint = self.checkpoint_before(lines.start);
+        let mut engine = Engine::from_snapshot(&self.config, checkpoint.engine.clone());
+        let mut parser = LineParser::new();
+        let mut block = Block::default();
+        let mut findings = Vec::new();
+        source.for_each_line(checkpoint.line, &mut |index, line| {
+            if index >= end {
+                return false;
+            }
+            findings.clear();
+            parser.parse(line, &self.context, &mut block, &mut findings);
+            findings.clear();
+            if engine.step(line, &block, &mut findings) && index >= lines.start {
+                visit(&engine.describe_last_move(index, line, &block));
+            }
+            true
+        });
+    }
+
+    /// The state before and after the block on `line`, its move and how its axis words resolve. A
+    /// line past the end reports the state at the end of the program.
     pub fn block_report(&self, source: &dyn LineSource, line: usize) -> BlockReport {
+        let checkpoint = self.checkpoint_before(line);
+        let mut engine = Engine::from_snapshot(&self.config, checkpoint.engine.clone());
+        let mut parser = LineParser::new();
+        let mut block = Block::default();
+        let mut findings = Vec::new();
+        let mut report = None;
+        source.for_each_line(checkpoint.line, &mut |index, line_text| {
+            findings.clear();
+            parser.parse(line_text, &self.context, &mut block, &mut findings);
+            findings.clear();
+            if index < line {
+                engine.step(line_text, &block, &mut findings);
+                return true;
+            }
+            let before_state = engine.state.clone();
+            let before = summarize(&self.config, &before_state, engine.flow_uncertain());
+            let movement = engine
+                .step(line_text, &block, &mut findings)
+                .then(|| engine.describe_last_move(index, line_text, &block));
+            let words = crate::analysis::resolution::resolve_words(
+                &self.config,
+                &before_state,
+                &engine.state,
+                line_text,
+                &block,
+                movement
+                    .as_ref()
+                    .and_then(|movement| movement.machine.as_deref()),
+            );
+            report = Some(BlockReport {
+                line,
+                before,
+                after: summarize(&self.config, &engine.state, engine.flow_uncertain()),
+                movement,
+                words,
+            });
+            false
+        });
+        report.unwrap_or_else(|| {
+            let after = summarize(&self.config, &engine.state, engine.flow_uncertain());
+            BlockReport {
+                line,
+                before: after.clone(),
+                after,
+                movement: None,
+                words: Vec::new(),
+            }
+        })
+    }
+
+    /// The nearest checkpoint at or before `line`.
+    fn checkpoint_before(&self, line: usize) -> &Checkpoint {
+        let index = self
+            .checkpoints
+            .partition_point(|checkpoint| checkpoint.line <= line);
+        &self.checkpoints[index.saturating_sub(1)]
+    }
+
+    /// Analyses the whole document again.
+    fn recompute(&mut self, source: &dyn LineSource) {
+        let line_count = source.line_count();
+        self.line_flags = Vec::with_capacity(line_count);
+        self.context = SyntaxContext::new(&self.config);
+        let mut has_proc_header = false;
+        source.for_each_line(0, &mut |_, line| {
+            let flags = line_flags_of(line);
+            if flags & DEFINES_MACRO != 0 {
+                if let Some(name) = macro_defined_by(line) {
+                    self.context.add_macro(name);
+                }
+            }
+            has_proc_header |= flags & PROC_HEADER != 0;
+            self.line_flags.push(flags);
+            true
+        });
+        self.subprogram = self.kind == ProgramKind::Subprogram || has_proc_header;
         let mut engine = Engine::new(&self.config);
-        let text = joined_text(source, 0..line.saturating_add(1).min(source.line_count()));
-        if is_subprogram(self.kind, &text) {
+        if self.subprogram {
             engine.assume_inherited_state();
         }
-        let mut before = None;
-        let mut movement = None;
-        crate::syntax::visit_blocks(&text, &self.config, |index, line_text, block, found| {
-            if index == line {
-                before = Some(summarize(
-                    &self.config,
-                    &engine.state,
-                    engine.flow_uncertain(),
-                ));
+        let start = Checkpoint {
+            line: 0,
+            engine: engine.snapshot(),
+            structure: StructureChecker::default(),
+        };
+        let mut position_reads = vec![READS_ALL; line_count];
+        let pass = self.run_pass(
+            source,
+            start.clone(),
+            line_count,
+            &mut [],
+            &mut position_reads,
+        );
+        self.position_reads = position_reads;
+        self.checkpoints = vec![start];
+        self.checkpoints.extend(pass.checkpoints);
+        self.body = pass.diagnostics;
+        self.tail = pass.tail;
+        self.lines_read = pass.lines_read;
+        self.combine();
+    }
+
+    /// Reads the document forward from `start`, taking new checkpoints, until it meets one of
+    /// `old_checkpoints` (all at or after `changed_end`, the first line the edit did not touch) with
+    /// the same state, or the end. At an old checkpoint whose state differs only by a shift of
+    /// positions, the intervals after it whose blocks read the shifted axes only incrementally are not
+    /// read again: their findings stay and their checkpoints are moved by the shift.
+    fn run_pass(
+        &self,
+        source: &dyn LineSource,
+        start: Checkpoint,
+        changed_end: usize,
+        old_checkpoints: &mut [Checkpoint],
+        position_reads: &mut [u8],
+    ) -> Pass {
+        let line_count = source.line_count();
+        let mut engine = Engine::from_snapshot(&self.config, start.engine);
+        let mut structure = start.structure;
+        let mut parser = LineParser::new();
+        let mut block = Block::default();
+        let mut line_findings = Vec::new();
+        let mut engine_findings = Vec::new();
+        let mut pass = Pass {
+            lines_read: 0,
+            checkpoints: Vec::new(),
+            diagnostics: Vec::new(),
+            kept: Vec::new(),
+            converged_at: None,
+            tail: Vec::new(),
+        };
+        let first_old = old_checkpoints.partition_point(|checkpoint| checkpoint.line < changed_end);
+        let mut next_old = first_old;
+        let mut resume_at = start.line;
+        let mut last_checkpoint = start.line;
+        loop {
+            // Why the reading below stopped: at an old checkpoint whose state differs by a shift.
+            let mut shift = None;
+            source.for_each_line(resume_at, &mut |index, line| {
+                if index > resume_at || index != start.line && index == resume_at {
+                    while old_checkpoints
+                        .get(next_old)
+                        .is_some_and(|checkpoint| checkpoint.line < index)
+                    {
+                        next_old += 1;
+                    }
+                    if let Some(old) = old_checkpoints.get(next_old) {
+                        if old.line == index && old.structure == structure {
+                            if engine.matches(&old.engine) {
+                                pass.converged_at = Some(index);
+                                return false;
+                            }
+                            if index > resume_at {
+                                if let Some(found) = engine.position_shift_from(&old.engine) {
+                                    shift = Some(found);
+                                    return false;
+                                }
+                            }
+                        }
+                    }
+                    if index - last_checkpoint >= CHECKPOINT_INTERVAL {
+                        last_checkpoint = index;
+                        pass.checkpoints.push(Checkpoint {
+                            line: index,
+                            engine: engine.snapshot(),
+                            structure: structure.clone(),
+                        });
+                    }
+                }
+                pass.lines_read += 1;
+                let first_of_line = pass.diagnostics.len();
+                parser.parse(line, &self.context, &mut block, &mut line_findings);
+                pass.diagnostics
+                    .extend(line_findings.drain(..).map(|diagnostic| LineDiagnostic {
+                        line: index,
+                        diagnostic,
+                    }));
+                structure.feed(index, &block, &mut pass.diagnostics);
+                engine.step(line, &block, &mut engine_findings);
+                pass.diagnostics
+                    .extend(engine_findings.drain(..).map(|diagnostic| LineDiagnostic {
+                        line: index,
+                        diagnostic,
+                    }));
+                let of_line = &mut pass.diagnostics[first_of_line..];
+                for item in of_line.iter_mut() {
+                    item.diagnostic.severity = self.config.severity_of(item.diagnostic.code);
+                }
+                of_line.sort_by_key(|item| item.diagnostic.span.start());
+                if let Some(reads) = position_reads.get_mut(index) {
+                    *reads = position_reads_of(&self.config, line, &block, &engine.state);
+                }
+                true
+            });
+            let Some(shift) = shift else {
+                break;
+            };
+            // Carry the shift across every following interval that reads the shifted axes only
+            // incrementally; read again from the first one that does not.
+            let Some(axes) = shifted_axes(&self.config, &shift) else {
+                resume_at = old_checkpoints[next_old].line;
+                continue;
+            };
+            let here = old_checkpoints[next_old].line;
+            pass.checkpoints.push(Checkpoint {
+                line: here,
+                engine: engine.snapshot(),
+                structure: structure.clone(),
+            });
+            last_checkpoint = here;
+            let mut current = next_old;
+            loop {
+                let interval_start = old_checkpoints[current].line;
+                let interval_end = old_checkpoints
+                    .get(current + 1)
+                    .map_or(line_count, |checkpoint| checkpoint.line);
+                let safe = position_reads[interval_start..interval_end]
+                    .iter()
+                    .all(|reads| reads & READS_ALL == 0 && reads & axes == 0);
+                if !safe {
+                    break;
+                }
+                pass.kept.push(interval_start..interval_end);
+                current += 1;
+                if current == old_checkpoints.len() {
+                    // Shifted to the end: the structures open at the end are those of before.
+                    pass.converged_at = Some(line_count);
+                    break;
+                }
+                old_checkpoints[current].engine.shift_positions(&shift);
+                let checkpoint = old_checkpoints[current].clone();
+                last_checkpoint = checkpoint.line;
+                pass.checkpoints.push(checkpoint);
             }
-            let result = engine.apply(index, line_text, block, found);
-            if index == line {
-                movement = result;
+            if pass.converged_at.is_some() {
+                break;
             }
-        });
-        let after = summarize(&self.config, &engine.state, engine.flow_uncertain());
-        BlockReport {
-            line,
-            before: before.unwrap_or_else(|| after.clone()),
-            after,
-            movement,
-            words: Vec::new(),
+            if current > next_old {
+                let checkpoint = &old_checkpoints[current];
+                engine = Engine::from_snapshot(&self.config, checkpoint.engine.clone());
+                structure = checkpoint.structure.clone();
+                // The checkpoint at `current` was pushed above; the old ones before it are replaced.
+                next_old = current + 1;
+            } else {
+                next_old = current + 1;
+            }
+            resume_at = old_checkpoints[current].line;
         }
+        if pass.converged_at.is_none() {
+            structure.finish(&mut pass.tail);
+            for item in &mut pass.tail {
+                item.diagnostic.severity = self.config.severity_of(item.diagnostic.code);
+            }
+        }
+        pass
     }
 
-    fn recompute(&mut self, source: &dyn LineSource) {
-        let text = joined_text(source, 0..source.line_count());
-        let analysis = analyze_program(&text, &self.config, self.kind);
-        self.diagnostics = analysis.diagnostics;
-        self.moves = analysis.moves;
+    /// Joins the findings of single lines and those of the end of the program, in the order of a
+    /// from-scratch analysis: by line and column, end-of-program findings after the others. Without
+    /// end-of-program findings (the common case) nothing is copied.
+    fn combine(&mut self) {
+        self.combined = (!self.tail.is_empty()).then(|| {
+            let mut combined = self.body.clone();
+            combined.extend(self.tail.iter().cloned());
+            combined.sort_by_key(|item| (item.line, item.diagnostic.span.start()));
+            combined
+        });
     }
 }
 
-fn is_subprogram(kind: ProgramKind, text: &str) -> bool {
-    kind == ProgramKind::Subprogram
-        || lines::line_ranges(text).any(|(start, end)| {
-            text[start..end]
-                .trim_start()
-                .get(..4)
-                .is_some_and(|word| word.eq_ignore_ascii_case("PROC"))
-        })
+/// Appends to `body` the items of `fresh` and `kept`, both sorted by line and about disjoint lines, in
+/// line order.
+fn merge_by_line(
+    body: &mut Vec<LineDiagnostic>,
+    fresh: Vec<LineDiagnostic>,
+    kept: impl Iterator<Item = LineDiagnostic>,
+) {
+    let mut fresh = fresh.into_iter().peekable();
+    for item in kept {
+        while let Some(earlier) = fresh.next_if(|candidate| candidate.line < item.line) {
+            body.push(earlier);
+        }
+        body.push(item);
+    }
+    body.extend(fresh);
 }
 
-fn joined_text(source: &dyn LineSource, lines: Range<usize>) -> String {
-    let mut text = String::new();
-    for index in lines {
-        text.push_str(&source.line(index));
-        text.push('\n');
+/// The whole-document facts a line carries.
+fn line_flags_of(line: &str) -> u8 {
+    let mut flags = 0;
+    if macro_defined_by(line).is_some() {
+        flags |= DEFINES_MACRO;
     }
-    text
+    if is_proc_header(line) {
+        flags |= PROC_HEADER;
+    }
+    flags
 }
 
 /// The readable form of a modal state.
@@ -267,12 +672,9 @@ pub fn summarize(config: &MachineConfig, state: &ModalState, flow_uncertain: boo
         .enumerate()
         .filter(|(index, _)| state.touched[*index])
         .map(|(index, axis)| {
+            let transverse = axis.kind == crate::config::AxisKind::Transverse;
             let value = state.positions[index].and_then(|value| {
-                if axis.kind == crate::config::AxisKind::Transverse {
-                    shows_diameter.map(|diameter| if diameter { value * 2.0 } else { value })
-                } else {
-                    Some(value)
-                }
+                crate::analysis::state::shown_value(transverse, shows_diameter, value)
             });
             (axis.name.clone(), value)
         })
@@ -319,6 +721,55 @@ mod tests {
             .find(|(name, _)| &**name == "Z")
             .unwrap();
         assert_eq!(z.1, 58.0);
+        type Row<'a> = (&'a str, ResolutionMode, Option<f64>, Option<f64>, bool);
+        let words: Vec<Row> = report
+            .words
+            .iter()
+            .map(|word| {
+                (
+                    word.axis.as_str(),
+                    word.mode,
+                    word.start,
+                    word.end,
+                    word.explained,
+                )
+            })
+            .collect();
+        assert_eq!(
+            words,
+            [
+                ("X", ResolutionMode::Absolute, Some(20.0), Some(75.0), true),
+                (
+                    "Z",
+                    ResolutionMode::Override(crate::syntax::ast::Modifier::Ic),
+                    Some(90.0),
+                    Some(58.0),
+                    true
+                ),
+            ]
+        );
+    }
+
+    #[test]
+    fn unknown_words_say_why() {
+        let config = Arc::new(MachineConfig::mill());
+        let text = "N10 G91 X5\nN20 X=R7\n";
+        let source = TextLines::new(text);
+        let analysis = DocumentAnalysis::new(&source, config, ProgramKind::Main);
+        let first = &analysis.block_report(&source, 0).words[0];
+        assert_eq!(first.end, None);
+        assert!(first
+            .unknown_reason
+            .as_deref()
+            .unwrap()
+            .contains("incremental move from a position"));
+        let second = &analysis.block_report(&source, 1).words[0];
+        assert_eq!(second.programmed, None);
+        assert!(second
+            .unknown_reason
+            .as_deref()
+            .unwrap()
+            .contains("variable"));
     }
 
     #[test]

@@ -1,7 +1,7 @@
 //! Applies one parsed block to the modal state, the way the control's interpreter does, and describes
-//! the resulting move. What this engine does not model yet (settable offsets, spatial rotations, calls
-//! of subprograms, jumps) turns the affected values into "unknown" or
-//! "uncertain": it never shows a number it cannot stand behind.
+//! the resulting move. What this engine does not model (spatial rotations, basic frames, calls of
+//! subprograms, jumps) turns the affected values into "unknown" or "uncertain": it never shows a
+//! number it cannot stand behind.
 
 use crate::analysis::eval::{evaluate, EvalError, Variables};
 use crate::analysis::state::ModalState;
@@ -11,6 +11,11 @@ use crate::syntax::ast::*;
 use crate::syntax::gcodes::GCode;
 use std::borrow::Cow;
 use std::sync::Arc;
+
+mod checks;
+mod circles;
+mod frame_variables;
+mod macros;
 
 /// A block that moves axes.
 #[derive(Debug, Clone, PartialEq)]
@@ -50,6 +55,9 @@ pub struct ArcMove {
     /// The radius in the basic unit system.
     pub radius: f64,
     pub clockwise: bool,
+    /// The direction the machine turns, after the programmable frame: a mirror in the plane turns a
+    /// clockwise arc counter-clockwise (reference §7.2, T49). `None` when the frame is unknown.
+    pub machine_clockwise: Option<bool>,
     /// The swept angle in degrees.
     pub sweep: f64,
 }
@@ -60,6 +68,8 @@ struct PolarWords {
     angle: Option<(Option<f64>, bool)>,
     radius: Option<Option<f64>>,
     span: Option<crate::diagnostics::Span>,
+    /// The span of an AP written without `=IC`/`=AC`.
+    plain_angle_span: Option<crate::diagnostics::Span>,
 }
 
 /// The circle words of one block: I, J, K (value, absolute) in the basic unit system, and CR.
@@ -72,6 +82,12 @@ struct CircleWords {
     radius_written: bool,
     radius: Option<f64>,
     opening_angle: bool,
+    /// The value of AR, when known.
+    opening_angle_value: Option<f64>,
+    /// I1, J1, K1 of CIP: written, with (value, absolute) when known.
+    intermediate: [Option<Option<(f64, bool)>>; 3],
+    /// TURN: its value when known, and its span.
+    turns: Option<(Option<f64>, crate::diagnostics::Span)>,
     /// The span of the block's words, for findings about the circle as a whole.
     span: Option<crate::diagnostics::Span>,
 }
@@ -89,6 +105,94 @@ pub struct Engine<'a> {
     axis_names: Vec<Arc<str>>,
     /// The positions before the current block, kept in one buffer for all blocks.
     start_positions: Vec<Option<f64>>,
+    /// The circle of the block last applied, for its move.
+    last_arc: Option<crate::analysis::circle::Circle>,
+    /// The geometry slot (X, Y, Z) of each configured axis, for frames.
+    slots: crate::analysis::machine::AxisSlots,
+    /// Per axis, how the current block wrote it: 0 not, 1 in workpiece coordinates, 2 as a machine
+    /// position (G53/G153/SUPA). One buffer for all blocks.
+    written: Vec<u8>,
+    /// The settable frame whose stored data the program wrote while it was active, until it is
+    /// selected again (the data are not active yet, reference §7.4).
+    stale_offset_data: Option<u8>,
+    /// The direction of the path at the end of the last move, in the plane (by index) it moved in,
+    /// for CT; `None` when unknown.
+    tangent: Option<(usize, (f64, f64))>,
+    /// How many macro expansions the current block is inside of.
+    expansion_depth: u8,
+    /// What the engine remembers about the program beyond the modal state.
+    memory: ProgramMemory,
+    /// The configuration indexes of the first and second axis of G17, G18 and G19.
+    plane_axis_cache: [(Option<usize>, Option<usize>); 3],
+}
+
+/// What the engine remembers about the program beyond the modal state: its macros and what the
+/// findings of §9.2 need to know about earlier blocks.
+#[derive(Debug, Clone, Default, PartialEq)]
+struct ProgramMemory {
+    /// Macros defined so far with `DEFINE name AS body`: upper-case name and body text.
+    macros: Vec<(String, String)>,
+    /// A pole or plane change since the last polar move: AP and RP must be written again.
+    pole_changed: bool,
+    /// Which unit functions the program has programmed: 1 for G70/G71, 2 for G700/G710.
+    unit_kinds_used: u8,
+    feed_programmed: bool,
+    unit_mix_reported: bool,
+    /// The geometry slots (X, Y, Z) whose mapping a rotating, scaling or mirroring frame change has
+    /// altered since the last move.
+    rotated_slots: [bool; 3],
+}
+
+/// What an [`Engine`] carries from one block to the next, detached from the configuration: a
+/// checkpoint from which the analysis of a document is replayed after an edit or for a hover. Two
+/// equal snapshots make every later block resolve the same way.
+#[derive(Debug, Clone, PartialEq)]
+pub struct EngineSnapshot {
+    state: ModalState,
+    flow_uncertain: bool,
+    missing_feed_reported: bool,
+    stale_offset_data: Option<u8>,
+    tangent: Option<(usize, (f64, f64))>,
+    memory: ProgramMemory,
+}
+
+/// How far an edit moved the positions of every axis, per kind of position (basic unit system): the
+/// workpiece set-points, the last programmed values and the machine set-points.
+#[derive(Debug, Clone, PartialEq)]
+pub struct PositionShift {
+    pub positions: Vec<f64>,
+    pub programmed: Vec<f64>,
+    pub machine: Vec<f64>,
+}
+
+impl EngineSnapshot {
+    /// Moves every known position by `shift`.
+    pub fn shift_positions(&mut self, shift: &PositionShift) {
+        add_to_known(&mut self.state.positions, &shift.positions);
+        add_to_known(&mut self.state.programmed, &shift.programmed);
+        add_to_known(&mut self.state.machine, &shift.machine);
+    }
+}
+
+fn add_to_known(values: &mut [Option<f64>], deltas: &[f64]) {
+    for (value, delta) in values.iter_mut().zip(deltas) {
+        if let Some(value) = value {
+            *value += delta;
+        }
+    }
+}
+
+/// `now - then` per axis where both are known, 0 where both are unknown; `None` when an axis is known
+/// in one and not the other.
+fn difference(now: &[Option<f64>], then: &[Option<f64>]) -> Option<Vec<f64>> {
+    now.iter()
+        .zip(then)
+        .map(|pair| match pair {
+            (Some(now), Some(then)) => Some(now - then),
+            (None, None) => Some(0.0),
+            _ => None,
+        })
+        .collect()
 }
 
 /// The non-modal G functions of one block that change what its axis words mean.
@@ -113,6 +217,108 @@ impl<'a> Engine<'a> {
                 .map(|axis| Arc::from(axis.name.as_str()))
                 .collect(),
             start_positions: Vec::with_capacity(config.axes.len()),
+            last_arc: None,
+            slots: crate::analysis::machine::AxisSlots::new(config),
+            written: vec![0; config.axes.len()],
+            stale_offset_data: None,
+            tangent: None,
+            expansion_depth: 0,
+            memory: ProgramMemory::default(),
+            plane_axis_cache: crate::analysis::state::PLANE_AXES.map(|(first, second)| {
+                let index = |name: &str| {
+                    config
+                        .axes
+                        .iter()
+                        .position(|axis| axis.name.eq_ignore_ascii_case(name))
+                };
+                (index(first), index(second))
+            }),
+        }
+    }
+
+    /// The state between blocks, to continue from later with [`Engine::from_snapshot`].
+    pub fn snapshot(&self) -> EngineSnapshot {
+        EngineSnapshot {
+            state: self.state.clone(),
+            flow_uncertain: self.flow_uncertain,
+            missing_feed_reported: self.missing_feed_reported,
+            stale_offset_data: self.stale_offset_data,
+            tangent: self.tangent,
+            memory: self.memory.clone(),
+        }
+    }
+
+    /// Whether the engine is in the state `snapshot` holds: then every later block resolves as it did
+    /// from there.
+    pub fn matches(&self, snapshot: &EngineSnapshot) -> bool {
+        self.flow_uncertain == snapshot.flow_uncertain
+            && self.missing_feed_reported == snapshot.missing_feed_reported
+            && self.stale_offset_data == snapshot.stale_offset_data
+            && self.tangent == snapshot.tangent
+            && self.memory == snapshot.memory
+            && self.state == snapshot.state
+    }
+
+    /// When the engine's state differs from `snapshot` only by known positions (the same axes known in
+    /// both), the difference of each kind of position per axis (engine minus snapshot, zero where
+    /// equal); `None` otherwise.
+    pub fn position_shift_from(&self, snapshot: &EngineSnapshot) -> Option<PositionShift> {
+        if self.flow_uncertain != snapshot.flow_uncertain
+            || self.missing_feed_reported != snapshot.missing_feed_reported
+            || self.stale_offset_data != snapshot.stale_offset_data
+            // The tangent is a direction: a shift of positions leaves it as it is.
+            || self.tangent != snapshot.tangent
+            || self.memory != snapshot.memory
+        {
+            return None;
+        }
+        let shift = PositionShift {
+            positions: difference(&self.state.positions, &snapshot.state.positions)?,
+            programmed: difference(&self.state.programmed, &snapshot.state.programmed)?,
+            machine: difference(&self.state.machine, &snapshot.state.machine)?,
+        };
+        let mut probe = snapshot.state.clone();
+        probe.positions.clone_from(&self.state.positions);
+        probe.programmed.clone_from(&self.state.programmed);
+        probe.machine.clone_from(&self.state.machine);
+        (probe == self.state).then_some(shift)
+    }
+
+    /// An engine that continues where `snapshot` was taken, on the same configuration.
+    pub fn from_snapshot(config: &'a MachineConfig, snapshot: EngineSnapshot) -> Engine<'a> {
+        // Every field is named (no `..`), so that a field added to the engine must be decided here:
+        // carried in the snapshot, or rebuilt from the configuration.
+        let Engine {
+            config,
+            state: _,
+            flow_uncertain: _,
+            missing_feed_reported: _,
+            axis_names,
+            start_positions,
+            last_arc,
+            slots,
+            written,
+            stale_offset_data: _,
+            tangent: _,
+            expansion_depth,
+            memory: _,
+            plane_axis_cache,
+        } = Engine::new(config);
+        Engine {
+            config,
+            state: snapshot.state,
+            flow_uncertain: snapshot.flow_uncertain,
+            missing_feed_reported: snapshot.missing_feed_reported,
+            axis_names,
+            start_positions,
+            last_arc,
+            slots,
+            written,
+            stale_offset_data: snapshot.stale_offset_data,
+            tangent: snapshot.tangent,
+            expansion_depth,
+            memory: snapshot.memory,
+            plane_axis_cache,
         }
     }
 
@@ -138,8 +344,77 @@ impl<'a> Engine<'a> {
         block: &Block,
         diagnostics: &mut Vec<Diagnostic>,
     ) -> Option<Move> {
+        self.step(line, block, diagnostics)
+            .then(|| self.describe_last_move(line_index, line, block))
+    }
+
+    /// Applies `block` like [`Engine::apply`] but only says whether it moved axes: building the move is
+    /// left to [`Engine::describe_last_move`], so that callers that need only diagnostics pay nothing
+    /// for it.
+    pub fn step(&mut self, line: &str, block: &Block, diagnostics: &mut Vec<Diagnostic>) -> bool {
+        let moved = self.step_block(line, block, diagnostics);
+        self.forget_non_finite();
+        moved
+    }
+
+    /// Values that overflowed (`X1EX308` twice under G91, a frame scaled beyond the range of a double)
+    /// are unknown, never infinity or NaN: a number shown must be one the control could reach.
+    fn forget_non_finite(&mut self) {
+        let finite = |value: &Option<f64>| value.filter(|value| value.is_finite());
+        let state = &mut self.state;
+        for values in [
+            &mut state.positions,
+            &mut state.programmed,
+            &mut state.machine,
+            &mut state.offset,
+        ] {
+            for value in values.iter_mut() {
+                *value = finite(value);
+            }
+        }
+        if state
+            .fine_translation
+            .is_some_and(|translation| !translation.iter().all(|value| value.is_finite()))
+        {
+            state.fine_translation = None;
+        }
+        self.state.feed = finite(&self.state.feed);
+        self.state.polar_angle = finite(&self.state.polar_angle);
+        self.state.polar_radius = finite(&self.state.polar_radius);
+        for pole in &mut self.state.poles {
+            if let crate::analysis::state::Pole::At(first, second) = *pole {
+                if !(first.is_finite() && second.is_finite()) {
+                    *pole = crate::analysis::state::Pole::Unknown;
+                }
+            }
+        }
+        if let Some(frame) = self.state.frame {
+            let numbers = frame.matrix.iter().flatten().chain(&frame.translation);
+            if !numbers.into_iter().all(|value| value.is_finite()) {
+                self.state.frame = None;
+            }
+        }
+        if let Some(circle) = self.last_arc {
+            let numbers = [
+                circle.centre.0,
+                circle.centre.1,
+                circle.radius,
+                circle.sweep,
+            ];
+            if !numbers.iter().all(|value| value.is_finite()) {
+                self.last_arc = None;
+            }
+        }
+    }
+
+    fn step_block(&mut self, line: &str, block: &Block, diagnostics: &mut Vec<Diagnostic>) -> bool {
+        self.last_arc = None;
         if block.is_header {
-            return None;
+            return false;
+        }
+        self.record_macro_definitions(line, block);
+        if let Some((expanded, used_at)) = self.expand_macro(line, block) {
+            return self.step_expanded(&expanded, used_at, diagnostics);
         }
         let statements = block.interpreted_statements();
         // A label may be the target of a backward jump and a structure keyword opens a loop or branch:
@@ -157,10 +432,20 @@ impl<'a> Engine<'a> {
         }
         let mut functions = BlockFunctions::default();
         let mut forget_for_frames = false;
+        let mut offset_selected = false;
+        let units_before = self.state.groups[13];
+        let mut unit_word = None;
+        self.written.iter_mut().for_each(|kind| *kind = 0);
         for statement in statements {
-            if let Statement::GCode { code, .. } = statement {
+            if let Statement::GCode { code, span } = statement {
                 if code.is_modal() {
                     self.state.set_modal(*code);
+                    if code.group() == 13 {
+                        unit_word = Some((*code, *span));
+                    }
+                    // Selecting a settable offset activates its stored data, also when the same
+                    // function is programmed again (reference §7.4).
+                    offset_selected |= code.group() == 8;
                     // PAROT, TOROT and TOFRAME turn the coordinate system with the table or the tool:
                     // positions are unknown afterwards (reference §7.5).
                     if matches!(code.group(), 52 | 53) && !code.name().ends_with("OF") {
@@ -177,6 +462,10 @@ impl<'a> Engine<'a> {
                 }
             }
         }
+        if offset_selected {
+            self.stale_offset_data = None;
+            self.change_offset(self.state.selected_offset(self.config));
+        }
         let mut start_positions = std::mem::take(&mut self.start_positions);
         start_positions.clear();
         start_positions.extend_from_slice(&self.state.positions);
@@ -185,6 +474,8 @@ impl<'a> Engine<'a> {
         let mut polar = PolarWords::default();
         let plane_before = self.state.plane_index();
         let mut forget_after = forget_for_frames;
+        // A call or a kinematic change may also write the settable frames' data (measuring cycles do).
+        let mut frame_data_changed = forget_for_frames;
         let mut circle_words = CircleWords::default();
         for statement in statements {
             let span = statement.span();
@@ -206,6 +497,9 @@ impl<'a> Engine<'a> {
                         let value = self.word_value(line, block, word, diagnostics);
                         polar.angle = Some((value, incremental));
                         polar.span = Some(word.span);
+                        if word.value.modifier.is_none() && functions.frame_or_pole.is_none() {
+                            polar.plain_angle_span = Some(word.span);
+                        }
                     }
                     AddressKind::Named(NamedAddress::PolarRadius) => {
                         let value = self.word_value(line, block, word, diagnostics);
@@ -224,6 +518,28 @@ impl<'a> Engine<'a> {
                     AddressKind::Interpolation if word.extension.is_none() => {
                         self.collect_centre_word(line, block, word, &mut circle_words, diagnostics);
                     }
+                    AddressKind::Interpolation
+                        if matches!(word.extension, Some(Extension::Number { value: 1, .. })) =>
+                    {
+                        self.collect_intermediate_word(
+                            line,
+                            block,
+                            word,
+                            &mut circle_words,
+                            diagnostics,
+                        );
+                    }
+                    AddressKind::Named(NamedAddress::Positioning | NamedAddress::IndirectAxis)
+                        if functions.frame_or_pole.is_none() =>
+                    {
+                        // POS[X]=, POSA[X]= and AX[X]= move an axis; they are not followed, so the
+                        // axis becomes unknown. SPOS and SPOSA position a spindle, not an axis.
+                        self.forget_indirect_axis(line, block, word);
+                    }
+                    AddressKind::Named(NamedAddress::Turns) => {
+                        circle_words.turns =
+                            Some((self.word_value(line, block, word, diagnostics), word.span));
+                    }
                     AddressKind::Named(NamedAddress::CircleRadius) => {
                         circle_words.radius_written = true;
                         circle_words.radius = self
@@ -234,6 +550,8 @@ impl<'a> Engine<'a> {
                     AddressKind::Named(NamedAddress::OpeningAngle) => {
                         // `G3 I10 J0 AR=90` moves without any axis word.
                         circle_words.opening_angle = true;
+                        circle_words.opening_angle_value =
+                            self.word_value(line, block, word, diagnostics);
                         moved |= functions.frame_or_pole.is_none() && !functions.dwell;
                     }
                     AddressKind::MFunction => {
@@ -268,29 +586,54 @@ impl<'a> Engine<'a> {
                 }
                 Statement::Call { kind, .. } if *kind != CallKind::Modal => {
                     forget_after = true;
+                    frame_data_changed = true;
                 }
                 Statement::Instruction { name, .. } => {
                     let upper = line[name.start()..name.end()].to_ascii_uppercase();
                     if changes_kinematics(&upper) {
                         forget_after = true;
+                        frame_data_changed = true;
                     }
                 }
                 _ => {}
             }
         }
+        self.check_units(
+            units_before,
+            unit_word,
+            feed_in_block.is_some(),
+            statements,
+            diagnostics,
+        );
         if self.state.plane_index() != plane_before {
-            // The stored AP belongs to the old plane (reference §5.2).
+            // The stored AP and RP belong to the old plane (reference §5.2).
             self.state.polar_angle = None;
+            self.state.polar_radius = None;
+            self.memory.pole_changed = true;
         }
         let mut polar_circle_centre = None;
         if let Some(code) = functions.frame_or_pole {
             if matches!(code.name().as_ref(), "G110" | "G111" | "G112") {
                 self.define_pole(code, line, block, statements, &polar, diagnostics);
             } else {
+                let frame_before = self.state.frame;
                 self.apply_frame_instruction(code, line, block, statements, diagnostics);
+                if let (Some(before), Some(after)) = (frame_before, self.state.frame) {
+                    for (slot, rotated) in self.memory.rotated_slots.iter_mut().enumerate() {
+                        *rotated |=
+                            (0..3).any(|row| before.matrix[row][slot] != after.matrix[row][slot]);
+                    }
+                }
+                // A frame instruction moves nothing: the axes keep their machine set-points.
+                crate::analysis::machine::reexpress(
+                    &mut self.state,
+                    &self.slots,
+                    crate::analysis::machine::Replaced::Frame(frame_before),
+                );
             }
         } else if polar.angle.is_some() || polar.radius.is_some() {
             moved = true;
+            self.check_polar_words(&polar, diagnostics);
             polar_circle_centre = self.apply_polar_move(line, statements, &polar, diagnostics);
         }
         if let Some(feed) = feed_in_block {
@@ -316,34 +659,12 @@ impl<'a> Engine<'a> {
         let motion = self.state.groups[1]
             .map(GCode::name)
             .unwrap_or(Cow::Borrowed(""));
-        let is_circle = matches!(motion.as_ref(), "G2" | "G3");
         let polar_move = polar.angle.is_some() || polar.radius.is_some();
-        if moved && is_circle && circle_words.opening_angle && !polar_move {
-            // With AR and a centre, the end point is the start turned about the centre, which is not
-            // followed yet: plane axes not written in the block are unknown, not left where they were.
-            let written: Vec<String> = statements
-                .iter()
-                .filter_map(|statement| match statement {
-                    Statement::Address(word) if word.kind == AddressKind::Axis => {
-                        Some(axis_name(line, word))
-                    }
-                    _ => None,
-                })
-                .collect();
-            for index in self.plane_axis_indexes() {
-                if !written
-                    .iter()
-                    .any(|name| self.config.axes[index].name.eq_ignore_ascii_case(name))
-                {
-                    self.state.positions[index] = None;
-                    self.state.touched[index] = true;
-                }
-            }
-        }
-        let arc = if moved && is_circle && functions.frame_or_pole.is_none() {
-            if polar_move {
+        let moves_path = moved && functions.frame_or_pole.is_none() && !functions.dwell;
+        let arc = if moves_path {
+            match motion.as_ref() {
                 // A polar circle turns around the pole; the start must lie on it (reference §5.2).
-                polar_circle_centre.and_then(|centre| {
+                "G2" | "G3" if polar_move => polar_circle_centre.and_then(|centre| {
                     self.polar_circle(
                         motion.as_ref() == "G2",
                         &start_positions,
@@ -351,31 +672,63 @@ impl<'a> Engine<'a> {
                         &polar,
                         diagnostics,
                     )
-                })
-            } else {
-                self.resolve_circle(
+                }),
+                "G2" | "G3" => self.resolve_circle(
                     motion.as_ref() == "G2",
                     &start_positions,
                     &circle_words,
                     diagnostics,
-                )
+                ),
+                "CIP" => self.resolve_cip(&start_positions, &circle_words, diagnostics),
+                "CT" => self.resolve_ct(&start_positions),
+                _ => None,
             }
         } else {
             None
         };
+        let arc = self.apply_turns(arc, &circle_words, diagnostics);
+        if moves_path {
+            self.update_tangent(&motion, &start_positions, arc.as_ref());
+        }
         if moved && functions.frame_or_pole.is_none() && !functions.dwell {
             self.check_feed(&motion, statements, diagnostics);
         }
-        let result = (moved && functions.frame_or_pole.is_none() && !functions.dwell).then(|| {
-            self.describe_move(
-                line_index,
-                line,
-                block,
-                &start_positions,
-                motion.clone(),
-                arc,
-            )
-        });
+        let moves_axes = moved && functions.frame_or_pole.is_none() && !functions.dwell;
+        if let Some(index) = self.stale_offset_data.filter(|_| moves_axes) {
+            self.stale_offset_data = None;
+            let name = crate::analysis::offsets::frame_name(index);
+            diagnostics.push(Diagnostic::new(
+                Code::SettableDataNotActive,
+                circle_words.span.unwrap_or_default(),
+                format!("the data of {name} ($P_UIFR[{index}]) were changed while {name} was active; this move still uses the old data: program {name} again to activate them"),
+            ));
+        }
+        if moves_axes {
+            self.check_axes_after_rotation(circle_words.span.unwrap_or_default(), diagnostics);
+        }
+        if functions.machine_coordinates && find_word(statements, AddressKind::Axis).is_none() {
+            // G53/G153/SUPA are non-modal (reference §2.3, §9.2 #13).
+            if let Some(span) = statements.iter().find_map(|statement| match statement {
+                Statement::GCode { code, span } if code.group() == 9 => Some(*span),
+                _ => None,
+            }) {
+                diagnostics.push(Diagnostic::new(
+                    Code::SuppressionWithoutAxes,
+                    span,
+                    "G53, G153 and SUPA act only on the axes of their own block; alone they do nothing: write them in every block that moves in machine coordinates",
+                ));
+            }
+        }
+        if functions.machine_coordinates || functions.reference_point {
+            crate::analysis::machine::store_machine_targets(
+                &mut self.state,
+                &self.slots,
+                &self.written,
+            );
+        }
+        crate::analysis::machine::update_after_block(&mut self.state, &self.slots, &self.written);
+        let result = moves_axes;
+        self.last_arc = arc;
         self.start_positions = start_positions;
         if forget_after {
             // The callee may have programmed a feed, so a later feed move without F is not reported.
@@ -383,6 +736,13 @@ impl<'a> Engine<'a> {
             self.state.forget_positions();
             self.state.variables.forget_all();
             self.state.frame = None;
+            self.tangent = None;
+            // The callee may select another settable offset; it is read again when the program
+            // selects one.
+            self.state.offset.iter_mut().for_each(|value| *value = None);
+            if frame_data_changed {
+                self.state.settable_data.forget_all();
+            }
         }
         result
     }
@@ -396,12 +756,13 @@ impl<'a> Engine<'a> {
         functions: &BlockFunctions,
         diagnostics: &mut Vec<Diagnostic>,
     ) -> bool {
-        let name = axis_name(line, word);
-        let Some(index) = self.axis_index(&name) else {
+        let name = AxisName(line, word);
+        let Some(index) = configured_axis_index(self.config, line, word) else {
             // Not a configured axis: the syntax layer reported it; nothing to track.
             return true;
         };
         self.state.touched[index] = true;
+        self.written[index] = 1;
         let kind = self.config.axes[index].kind;
         let modifier = word.value.modifier.map(|(modifier, _)| modifier);
         let absolute = match modifier {
@@ -432,14 +793,14 @@ impl<'a> Engine<'a> {
         let value = self.word_value(line, block, word, diagnostics);
         // Unknown value, or a mode inherited from an unseen caller: the position is unknown.
         let (Some(mut value), Some(absolute)) = (value, absolute) else {
-            self.state.positions[index] = None;
+            self.state.program(index, None);
             return false;
         };
         if matches!(kind, AxisKind::Linear | AxisKind::Transverse) {
             match self.state.length_factor(self.config.metric) {
                 Some(factor) => value *= factor,
                 None => {
-                    self.state.positions[index] = None;
+                    self.state.program(index, None);
                     return false;
                 }
             }
@@ -463,22 +824,52 @@ impl<'a> Engine<'a> {
                 Some(true) => value /= 2.0,
                 Some(false) => {}
                 None => {
-                    self.state.positions[index] = None;
+                    self.state.program(index, None);
                     return false;
                 }
             }
         }
         if functions.machine_coordinates || functions.reference_point {
-            // G53/G153/SUPA values are machine positions; G74/G75 approach machine-defined points.
-            let known =
-                functions.machine_coordinates && self.state.machine_equals_programmed() && absolute;
-            self.state.positions[index] = known.then_some(value);
+            // G53/G153/SUPA values are machine positions, stored in workpiece coordinates after the
+            // block (reference §3.8); G74/G75 approach machine-defined points. An increment in machine
+            // coordinates is not followed.
+            let known = functions.machine_coordinates && absolute;
+            self.state.machine[index] = known.then_some(value);
+            self.state.program(index, None);
+            self.written[index] = 2;
             return known;
+        }
+        // Under SD42440 = 1 an increment adds to the last programmed value, so that it also traverses
+        // a frame change since; under 0 it adds to the set-point in the new frames (reference §3.6).
+        let reference = if self.config.frame_offset_incr_prog {
+            self.state.programmed[index]
+        } else {
+            self.state.positions[index]
+        };
+        if !absolute && self.config.frame_offset_incr_prog {
+            let programmed = self.state.programmed[index];
+            let difference = match (programmed, self.state.positions[index]) {
+                (Some(programmed), Some(current)) => ((programmed - current).abs() > 1e-9)
+                    .then(|| format!("{:.4}", programmed - current)),
+                (Some(_), None) => Some("an unknown amount".to_string()),
+                _ => None,
+            };
+            if let Some(difference) = difference {
+                diagnostics.push(Diagnostic::new(
+                    Code::IncrementAfterOffsetChange,
+                    word.span,
+                    format!("`{name}` moves incrementally after a frame or offset change: the change ({difference} in workpiece coordinates) is traversed in addition to the increment (SD42440 = 1)"),
+                ));
+            }
         }
         let target = if absolute {
             Some(value)
         } else {
-            match self.state.positions[index] {
+            match reference {
+                // A modulo axis counts 0 to 360 degrees: an increment wraps (reference §3.5).
+                Some(previous) if kind == AxisKind::Modulo => {
+                    Some((previous + value).rem_euclid(360.0))
+                }
                 Some(previous) => Some(previous + value),
                 None => {
                     diagnostics.push(Diagnostic::new(
@@ -490,8 +881,43 @@ impl<'a> Engine<'a> {
                 }
             }
         };
-        self.state.positions[index] = target;
+        self.state.program(index, target);
         target.is_some()
+    }
+
+    /// `POS[X]=`, `POSA[X]=`, `AX[X]=`: the named axis becomes unknown; every axis when the name is not
+    /// written out.
+    fn forget_indirect_axis(&mut self, line: &str, block: &Block, word: &AddressWord) {
+        let name = line[word.name.start()..word.name.end()].to_ascii_uppercase();
+        if name.starts_with("SPOS") {
+            return;
+        }
+        let axis = match &word.extension {
+            Some(Extension::Index { indexes, .. }) if indexes.len() == 1 => {
+                let expr = block.expr(indexes[0]);
+                match &expr.kind {
+                    ExprKind::Name { indexes } if indexes.is_empty() => {
+                        self.axis_index(&line[expr.span.start()..expr.span.end()])
+                    }
+                    _ => None,
+                }
+            }
+            _ => None,
+        };
+        match axis {
+            Some(index) => self.program_axis(index, None),
+            None => {
+                for index in 0..self.config.axes.len() {
+                    self.program_axis(index, None);
+                }
+            }
+        }
+    }
+
+    /// The block programs axis `index` to `value` in workpiece coordinates.
+    fn program_axis(&mut self, index: usize, value: Option<f64>) {
+        self.state.program(index, value);
+        self.written[index] = 1;
     }
 
     /// The value of a word's expression (constant or evaluated), or `None` when unknown.
@@ -532,6 +958,19 @@ impl<'a> Engine<'a> {
                 let name = line[target_span.start()..target_span.end()].to_ascii_uppercase();
                 self.state.variables.set_variable(&name, evaluated);
             }
+            AssignTarget::SystemVariable { indexes } => {
+                self.apply_system_variable_write(
+                    line,
+                    block,
+                    target_span,
+                    indexes,
+                    value,
+                    diagnostics,
+                );
+            }
+            AssignTarget::GGroup { group } => {
+                self.apply_group_write(line, block, *group, value, diagnostics);
+            }
             _ => {}
         }
     }
@@ -568,9 +1007,12 @@ impl<'a> Engine<'a> {
             // Working-area limits (G25/G26) do not move the coordinate system.
             return;
         }
-        let is_length = matches!(name, "TRANS" | "ATRANS");
+        let is_length = matches!(name, "TRANS" | "ATRANS" | "G58" | "G59");
         let mut values: [Option<Option<f64>>; 3] = [None; 3];
-        let mut followable = !matches!(name, "ROTS" | "AROTS" | "G58" | "G59");
+        // G58 and G59 replace the coarse and fine translation axially; without a fine translation
+        // (MD18600 = 0) they are not followed.
+        let mut followable = !matches!(name, "ROTS" | "AROTS")
+            && (self.config.frame_fine_trans || !matches!(name, "G58" | "G59"));
         let mut rotation_in_plane = None;
         for statement in statements {
             let Statement::Address(word) = statement else {
@@ -615,7 +1057,7 @@ impl<'a> Engine<'a> {
             None
         } else {
             match name {
-                "TRANS" | "ATRANS" => Some(Frame::translation([
+                "TRANS" | "ATRANS" | "G58" | "G59" => Some(Frame::translation([
                     written(0, 0.0),
                     written(1, 0.0),
                     written(2, 0.0),
@@ -657,12 +1099,64 @@ impl<'a> Engine<'a> {
                 }))),
             }
         };
+        if self.config.frame_fine_trans {
+            let written = values.map(|value| value.is_some());
+            self.compose_with_fine_translation(name, element, written);
+            return;
+        }
         let absolute = matches!(name, "TRANS" | "ROT" | "SCALE" | "MIRROR");
         self.state.frame = match (absolute, element) {
             (_, None) => None,
             (true, Some(element)) => Some(element),
             (false, Some(element)) => self.state.frame.map(|frame| frame.then_inner(&element)),
         };
+    }
+
+    /// Frame composition with a fine translation (MD18600 = 1, reference §7.2): TRANS writes the
+    /// coarse part and keeps the fine one, ATRANS adds to the fine part, G58 and G59 replace the
+    /// coarse and the fine part of the written axes. Whether ROT, SCALE and MIRROR clear a fine part is
+    /// not documented: with one, the frame becomes unknown.
+    fn compose_with_fine_translation(
+        &mut self,
+        name: &str,
+        element: Option<crate::analysis::frame::Frame>,
+        written: [bool; 3],
+    ) {
+        use crate::analysis::frame::Frame;
+        let known = self.state.frame.zip(self.state.fine_translation);
+        let result = element.zip(known).and_then(|(element, (frame, fine))| {
+            let add =
+                |left: [f64; 3], right: [f64; 3]| [0, 1, 2].map(|axis| left[axis] + right[axis]);
+            match name {
+                "TRANS" => Some((Frame::translation(add(element.translation, fine)), fine)),
+                "ATRANS" => {
+                    let shift = [0, 1, 2].map(|row| {
+                        (0..3)
+                            .map(|column| frame.matrix[row][column] * element.translation[column])
+                            .sum::<f64>()
+                    });
+                    Some((frame.then_inner(&element), add(fine, shift)))
+                }
+                "G58" | "G59" => {
+                    let mut frame = frame;
+                    let mut fine = fine;
+                    for axis in (0..3).filter(|axis| written[*axis]) {
+                        let value = element.translation[axis];
+                        if name == "G58" {
+                            frame.translation[axis] = value + fine[axis];
+                        } else {
+                            frame.translation[axis] += value - fine[axis];
+                            fine[axis] = value;
+                        }
+                    }
+                    Some((frame, fine))
+                }
+                "ROT" | "SCALE" | "MIRROR" => (fine == [0.0; 3]).then_some((element, fine)),
+                _ => Some((frame.then_inner(&element), fine)),
+            }
+        });
+        self.state.frame = result.map(|(frame, _)| frame);
+        self.state.fine_translation = result.map(|(_, fine)| fine);
     }
 
     /// G110 (relative to the last programmed position), G111 (absolute), G112 (relative to the last
@@ -678,6 +1172,9 @@ impl<'a> Engine<'a> {
     ) {
         use crate::analysis::state::Pole;
         self.state.polar_angle = None;
+        // What a stored RP means for the new pole is not documented (reference §5.2 [?]).
+        self.state.polar_radius = None;
+        self.memory.pole_changed = true;
         let Some(plane) = self.state.plane_index() else {
             return;
         };
@@ -710,8 +1207,7 @@ impl<'a> Engine<'a> {
                 if word.kind != AddressKind::Axis {
                     continue;
                 }
-                let name = axis_name(line, word);
-                let Some(index) = self.axis_index(&name) else {
+                let Some(index) = configured_axis_index(self.config, line, word) else {
                     continue;
                 };
                 let slot = if Some(index) == first {
@@ -755,10 +1251,9 @@ impl<'a> Engine<'a> {
         let (first, second) = self.plane_axes();
         // With the plane unknown, any geometry axis may be a plane axis.
         let plane_axes = self.plane_axis_indexes();
-        let forget_plane = |state: &mut ModalState| {
+        let forget_plane = |engine: &mut Engine| {
             for index in &plane_axes {
-                state.positions[*index] = None;
-                state.touched[*index] = true;
+                engine.program_axis(*index, None);
             }
         };
         let angle = match polar.angle {
@@ -776,8 +1271,7 @@ impl<'a> Engine<'a> {
         // Only the axis perpendicular to the plane may join AP/RP (reference §5.3, T97).
         let plane_axis_written = statements.iter().any(|statement| {
             matches!(statement, Statement::Address(word) if word.kind == AddressKind::Axis && {
-                let name = axis_name(line, word);
-                plane_axes.iter().any(|index| self.config.axes[*index].name.eq_ignore_ascii_case(&name))
+                configured_axis_index(self.config, line, word).is_some_and(|index| plane_axes.contains(&index))
             })
         });
         if plane_axis_written {
@@ -786,12 +1280,12 @@ impl<'a> Engine<'a> {
                 span,
                 "a polar block may add only the axis perpendicular to the plane; a plane axis cannot join AP and RP",
             ));
-            forget_plane(&mut self.state);
+            forget_plane(self);
             return None;
         }
         let (Some(first), Some(second), Some(plane)) = (first, second, self.state.plane_index())
         else {
-            forget_plane(&mut self.state);
+            forget_plane(self);
             return None;
         };
         let pole = match self.state.poles[plane] {
@@ -813,14 +1307,12 @@ impl<'a> Engine<'a> {
         let (Some(pole), Some(angle), Some(radius), false) =
             (pole, angle, radius, transverse_in_plane)
         else {
-            forget_plane(&mut self.state);
+            forget_plane(self);
             return None;
         };
         let radians = angle.to_radians();
-        self.state.positions[first] = Some(pole.0 + radius * radians.cos());
-        self.state.positions[second] = Some(pole.1 + radius * radians.sin());
-        self.state.touched[first] = true;
-        self.state.touched[second] = true;
+        self.program_axis(first, Some(pole.0 + radius * radians.cos()));
+        self.program_axis(second, Some(pole.1 + radius * radians.sin()));
         Some(pole)
     }
 
@@ -866,39 +1358,47 @@ impl<'a> Engine<'a> {
             .position(|axis| axis.name.eq_ignore_ascii_case(name))
     }
 
-    /// Machine coordinates of the touched axes whose value is known: the programmable frame applied to
-    /// X, Y and Z (the other axes have no frame here); transverse axes as radii.
+    /// Machine coordinates of the touched axes whose value is known (transverse axes as radii).
     fn machine_positions(&self) -> Vec<(Arc<str>, f64)> {
-        let frame = self.state.frame.unwrap_or_default();
-        let slot_of = |index: usize| {
-            ["X", "Y", "Z"]
-                .iter()
-                .position(|name| self.config.axes[index].name.eq_ignore_ascii_case(name))
-        };
-        let mut point = [None; 3];
-        for index in 0..self.config.axes.len() {
-            if let Some(slot) = slot_of(index) {
-                point[slot] = self.state.positions[index];
-            }
-        }
         self.axis_names
             .iter()
             .enumerate()
             .filter(|(index, _)| self.state.touched[*index])
-            .filter_map(|(index, name)| {
-                let value = match slot_of(index) {
-                    Some(slot) => frame.apply_axis(slot, point)?,
-                    None => self.state.positions[index]?,
-                };
-                Some((name.clone(), value))
-            })
+            .filter_map(|(index, name)| Some((name.clone(), self.state.machine[index]?)))
             .collect()
+    }
+
+    /// The turning direction in the machine of an arc programmed `clockwise` in the active plane: the
+    /// frame's map of the plane reverses it when its determinant is negative (an odd number of
+    /// mirrors). `None` when the frame or the plane is unknown, or the frame tilts the plane.
+    fn machine_clockwise(&self, clockwise: bool) -> Option<bool> {
+        let frame = self.state.frame?;
+        let (first, second) = match self.state.plane_index()? {
+            0 => (0, 1),
+            1 => (2, 0),
+            _ => (1, 2),
+        };
+        let normal = 3 - first - second;
+        let tilted = frame.matrix[normal][first] != 0.0
+            || frame.matrix[normal][second] != 0.0
+            || frame.matrix[first][normal] != 0.0
+            || frame.matrix[second][normal] != 0.0;
+        if tilted {
+            return None;
+        }
+        let determinant = frame.matrix[first][first] * frame.matrix[second][second]
+            - frame.matrix[first][second] * frame.matrix[second][first];
+        Some(if determinant < 0.0 {
+            !clockwise
+        } else {
+            clockwise
+        })
     }
 
     /// The configuration indexes of the plane's first and second axis (G17: X, Y; G18: Z, X; G19: Y, Z).
     fn plane_axes(&self) -> (Option<usize>, Option<usize>) {
-        match self.state.plane_axis_names() {
-            Some((first, second)) => (self.axis_index(first), self.axis_index(second)),
+        match self.state.plane_index() {
+            Some(plane) => self.plane_axis_cache[plane],
             // The plane is inherited from an unseen caller.
             None => (None, None),
         }
@@ -946,95 +1446,6 @@ impl<'a> Engine<'a> {
         circle_words.centre[slot] = Some((value, absolute));
     }
 
-    /// Resolves the circle of a G2/G3 block, reporting what the control would reject.
-    fn resolve_circle(
-        &self,
-        clockwise: bool,
-        start_positions: &[Option<f64>],
-        words: &CircleWords,
-        diagnostics: &mut Vec<Diagnostic>,
-    ) -> Option<crate::analysis::circle::Circle> {
-        use crate::analysis::circle::{from_centre, from_radius, CircleError};
-        let span = words.span.unwrap_or_default();
-        let (Some(first), Some(second)) = self.plane_axes() else {
-            return None;
-        };
-        let plane_slots = |index: usize| -> Option<usize> {
-            match self.config.axes[index].name.to_ascii_uppercase().as_str() {
-                "X" => Some(0),
-                "Y" => Some(1),
-                "Z" => Some(2),
-                _ => None,
-            }
-        };
-        let centre_given = [first, second]
-            .iter()
-            .any(|index| plane_slots(*index).is_some_and(|slot| words.centre[slot].is_some()));
-        if !words.radius_written && !centre_given && !words.opening_angle && !words.centre_unknown {
-            diagnostics.push(Diagnostic::new(
-                Code::CircleWithoutCentre,
-                span,
-                "G2/G3 needs a centre (I, J, K), a radius (CR=), an opening angle (AR=) or polar values (AP=, RP=)",
-            ));
-            return None;
-        }
-        if words.centre_unknown || (words.radius_written && words.radius.is_none()) {
-            // A value of the circle is unknown: nothing can be checked.
-            return None;
-        }
-        let start = (start_positions[first]?, start_positions[second]?);
-        let end = (self.state.positions[first]?, self.state.positions[second]?);
-        let error_const = self.config.circle_error_const;
-        let error_factor = self.config.circle_error_factor;
-        let result = if let Some(radius) = words.radius {
-            from_radius(start, end, radius, clockwise, error_const, error_factor)
-        } else if centre_given {
-            let coordinate = |index: usize, start_value: f64| -> f64 {
-                match plane_slots(index).and_then(|slot| words.centre[slot]) {
-                    Some((value, true)) => value,
-                    Some((value, false)) => start_value + value,
-                    // A centre parameter that is 0 may be left out (reference §3.2).
-                    None => start_value,
-                }
-            };
-            let centre = (coordinate(first, start.0), coordinate(second, start.1));
-            from_centre(start, end, centre, clockwise, error_const, error_factor)
-        } else {
-            // An opening angle (AR=) is not followed yet.
-            return None;
-        };
-        match result {
-            Ok(circle) => Some(circle),
-            Err(CircleError::EndNotOnCircle {
-                difference,
-                tolerance,
-            }) => {
-                diagnostics.push(Diagnostic::new(
-                    Code::CircleEndNotOnCircle,
-                    span,
-                    format!("the end point is {difference:.4} off the circle, more than the tolerance {tolerance:.4} (alarm 14040)"),
-                ));
-                None
-            }
-            Err(CircleError::RadiusTooSmall { chord, radius }) => {
-                diagnostics.push(Diagnostic::new(
-                    Code::CircleRadiusTooSmall,
-                    span,
-                    format!("CR={radius:.4} is smaller than half the distance to the end point ({:.4}): no such circle exists", chord / 2.0),
-                ));
-                None
-            }
-            Err(CircleError::RadiusFullCircle) => {
-                diagnostics.push(Diagnostic::new(
-                    Code::CircleRadiusFullCircle,
-                    span,
-                    "CR cannot program a full circle: the end point equals the start point (alarm 14040)",
-                ));
-                None
-            }
-        }
-    }
-
     fn plane_axis_indexes(&self) -> Vec<usize> {
         match self.plane_axes() {
             (None, None) => {
@@ -1076,22 +1487,18 @@ impl<'a> Engine<'a> {
         ));
     }
 
-    fn describe_move(
-        &self,
-        line_index: usize,
-        line: &str,
-        block: &Block,
-        start_positions: &[Option<f64>],
-        motion: Cow<'static, str>,
-        arc: Option<crate::analysis::circle::Circle>,
-    ) -> Move {
+    /// The move of the block last applied with [`Engine::step`], which returned true for it.
+    pub fn describe_last_move(&self, line_index: usize, line: &str, block: &Block) -> Move {
+        let motion = self.state.groups[1]
+            .map(GCode::name)
+            .unwrap_or(Cow::Borrowed(""));
+        let start_positions = &self.start_positions;
+        let arc = self.last_arc;
         let shows_diameter = self.state.shows_diameter();
         // How the program shows a value; unknown for a transverse axis while the diameter mode is.
         let display = |index: usize, value: f64| -> Option<f64> {
-            if self.config.axes[index].kind != AxisKind::Transverse {
-                return Some(value);
-            }
-            shows_diameter.map(|diameter| if diameter { value * 2.0 } else { value })
+            let transverse = self.config.axes[index].kind == AxisKind::Transverse;
+            crate::analysis::state::shown_value(transverse, shows_diameter, value)
         };
         let mut start = Vec::new();
         let mut end = Vec::new();
@@ -1129,6 +1536,7 @@ impl<'a> Engine<'a> {
                 centre,
                 radius: circle.radius,
                 clockwise: circle.clockwise,
+                machine_clockwise: self.machine_clockwise(circle.clockwise),
                 sweep: circle.sweep,
             }
         });
@@ -1169,12 +1577,61 @@ fn evaluate_or_report(
 }
 
 /// The axis name of a word: the letter and its numeric extension (`X`, `X1`), or the whole name.
-fn axis_name(line: &str, word: &AddressWord) -> String {
-    let mut name = line[word.name.start()..word.name.end()].to_ascii_uppercase();
-    if let Some(Extension::Number { value, .. }) = &word.extension {
-        name.push_str(&value.to_string());
+pub(crate) fn axis_name(line: &str, word: &AddressWord) -> String {
+    AxisName(line, word).to_string()
+}
+
+/// The axis name of a word, written only when a message needs it: most words never do, and building a
+/// string per word cost an allocation per axis word of every block.
+pub(crate) struct AxisName<'a>(pub &'a str, pub &'a AddressWord);
+
+impl std::fmt::Display for AxisName<'_> {
+    fn fmt(&self, formatter: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let AxisName(line, word) = self;
+        for character in line[word.name.start()..word.name.end()].chars() {
+            write!(formatter, "{}", character.to_ascii_uppercase())?;
+        }
+        if let Some(Extension::Number { value, .. }) = &word.extension {
+            write!(formatter, "{value}")?;
+        }
+        Ok(())
     }
-    name
+}
+
+/// The configuration index of the axis a word names, compared without building its name.
+pub(crate) fn configured_axis_index(
+    config: &MachineConfig,
+    line: &str,
+    word: &AddressWord,
+) -> Option<usize> {
+    let letters = line
+        .as_bytes()
+        .get(word.name.start()..word.name.end())
+        .unwrap_or_default();
+    let mut digits_buffer = [0u8; 10];
+    let digits: &[u8] = match &word.extension {
+        Some(Extension::Number { value, .. }) => {
+            // The decimal digits of the extension, as `to_string` writes them.
+            let mut remaining = *value;
+            let mut start = digits_buffer.len();
+            loop {
+                start -= 1;
+                digits_buffer[start] = b'0' + (remaining % 10) as u8;
+                remaining /= 10;
+                if remaining == 0 {
+                    break;
+                }
+            }
+            &digits_buffer[start..]
+        }
+        _ => &[],
+    };
+    config.axes.iter().position(|axis| {
+        let name = axis.name.as_bytes();
+        name.len() == letters.len() + digits.len()
+            && name[..letters.len()].eq_ignore_ascii_case(letters)
+            && &name[letters.len()..] == digits
+    })
 }
 
 fn find_word(statements: &[Statement], kind: AddressKind) -> Option<&AddressWord> {

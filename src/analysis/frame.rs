@@ -77,6 +77,41 @@ impl Frame {
         }
     }
 
+    /// The inverse map (parent coordinates back to programmed ones); `None` when the frame is singular,
+    /// e.g. after `SCALE X0`.
+    pub fn inverse(&self) -> Option<Frame> {
+        let m = &self.matrix;
+        let cofactor = |row: usize, column: usize| {
+            let (r1, r2) = ((row + 1) % 3, (row + 2) % 3);
+            let (c1, c2) = ((column + 1) % 3, (column + 2) % 3);
+            m[r1][c1] * m[r2][c2] - m[r1][c2] * m[r2][c1]
+        };
+        let determinant: f64 = (0..3)
+            .map(|column| m[0][column] * cofactor(0, column))
+            .sum();
+        if !determinant.is_finite() || determinant.abs() < 1e-12 {
+            return None;
+        }
+        // Snap rounding noise so that exact zeros stay zeros (see `rotation_in_plane`).
+        let snap = |value: f64| if value.abs() < 1e-15 { 0.0 } else { value };
+        let mut matrix = [[0.0; 3]; 3];
+        for (row, cells) in matrix.iter_mut().enumerate() {
+            for (column, cell) in cells.iter_mut().enumerate() {
+                *cell = snap(cofactor(column, row) / determinant);
+            }
+        }
+        let mut translation = [0.0; 3];
+        for (row, value) in translation.iter_mut().enumerate() {
+            *value = -(0..3)
+                .map(|k| matrix[row][k] * self.translation[k])
+                .sum::<f64>();
+        }
+        Some(Frame {
+            matrix,
+            translation,
+        })
+    }
+
     /// The parent coordinate `axis` of a point whose coordinates may be partly unknown; unknown when a
     /// coordinate it depends on is.
     pub fn apply_axis(&self, axis: usize, point: [Option<f64>; 3]) -> Option<f64> {
@@ -117,6 +152,19 @@ mod tests {
         let frame =
             Frame::translation([10.0, 0.0, 0.0]).then_inner(&Frame::translation([5.0, 0.0, 0.0]));
         assert!(near(apply(&frame, [0.0, 0.0, 0.0]), [15.0, 0.0, 0.0]));
+    }
+
+    #[test]
+    fn the_inverse_undoes_the_frame() {
+        let frame = Frame::translation([10.0, 5.0, 0.0])
+            .then_inner(&Frame::rotation_in_plane(0, 1, 30.0))
+            .then_inner(&Frame::scale([2.0, -1.0, 1.0]));
+        let inverse = frame.inverse().unwrap();
+        let point = [3.0, -4.0, 7.0];
+        assert!(near(apply(&inverse, apply(&frame, point)), point));
+        assert!(Frame::scale([0.0, 1.0, 1.0]).inverse().is_none());
+        let quarter = Frame::rotation_in_plane(0, 1, 90.0).inverse().unwrap();
+        assert_eq!(quarter.apply_axis(0, [None, Some(2.0), None]), Some(2.0));
     }
 
     #[test]

@@ -3,23 +3,27 @@
 //!
 //! What is followed today: G groups, G90/G91 with `=AC`/`=IC`, inch/metric (G70/G71/G700/G710),
 //! diameter programming (DIAMOF/DIAMON/DIAM90 and DAC/DIC/RAC/RIC), R parameters and DEF variables,
-//! feed, circles by centre or radius, polar coordinates, the programmable frame for machine
-//! coordinates. What is not followed yet turns values into "unknown" (settable work offsets, spatial
-//! rotations, AR/CIP/CT circles, calls of subprograms and cycles, transformations) or "uncertain"
-//! (everything after a jump or control structure, because the engine evaluates in program order).
+//! feed, circles (I/J/K, CR, AR, CIP, CT, TURN), polar coordinates, macros of the program, and for
+//! machine coordinates the programmable frame, the configured settable offsets with `$P_UIFR` writes
+//! and G53/G153/SUPA. What is not followed turns values into "unknown" (spatial rotations, basic and
+//! system frames, calls of subprograms and cycles, transformations) or "uncertain" (everything after a
+//! jump or control structure, because the engine evaluates in program order).
 
 pub mod circle;
 pub mod document;
 pub mod engine;
 pub mod eval;
 pub mod frame;
+pub mod machine;
+pub mod offsets;
+pub mod position_reads;
+pub mod resolution;
 pub mod state;
 
 pub use engine::{Engine, Move};
 
 use crate::config::MachineConfig;
 use crate::diagnostics::LineDiagnostic;
-use crate::syntax::lines;
 
 /// Everything the analysis finds in a program.
 #[derive(Debug, Clone, PartialEq)]
@@ -56,24 +60,59 @@ pub fn analyze(text: &str, config: &MachineConfig) -> Analysis {
 
 /// Parses and interprets a whole program of the given kind, in one pass over its blocks.
 pub fn analyze_program(text: &str, config: &MachineConfig, kind: ProgramKind) -> Analysis {
+    let mut moves = Vec::new();
+    let diagnostics = visit_moves(text, config, kind, |movement| moves.push(movement.clone()));
+    Analysis { moves, diagnostics }
+}
+
+/// The diagnostics of a program, syntax and semantic, without building its moves: what `check` and the
+/// language server need, at the cost of parsing and following the modal state only.
+pub fn diagnose_program(
+    text: &str,
+    config: &MachineConfig,
+    kind: ProgramKind,
+) -> Vec<LineDiagnostic> {
+    let mut engine = new_engine(text, config, kind);
+    crate::syntax::visit_blocks(text, config, |_, line, block, findings| {
+        engine.step(line, block, findings);
+    })
+}
+
+/// Hands every move of a program to `visit`, in program order, and returns the diagnostics. The moves
+/// are built one at a time and not kept, so a program of any length needs memory for one move only.
+pub fn visit_moves(
+    text: &str,
+    config: &MachineConfig,
+    kind: ProgramKind,
+    mut visit: impl FnMut(&Move),
+) -> Vec<LineDiagnostic> {
+    let mut engine = new_engine(text, config, kind);
+    crate::syntax::visit_blocks(text, config, |line_index, line, block, findings| {
+        if engine.step(line, block, findings) {
+            visit(&engine.describe_last_move(line_index, line, block));
+        }
+    })
+}
+
+/// An engine in the state a program of this kind starts with.
+fn new_engine<'a>(text: &str, config: &'a MachineConfig, kind: ProgramKind) -> Engine<'a> {
     let mut engine = Engine::new(config);
-    // A subprogram (or a program with a PROC header) starts with the caller's feed, unknown here.
-    let is_subprogram = kind == ProgramKind::Subprogram
-        || lines::line_ranges(text).any(|(start, end)| {
-            text[start..end]
-                .trim_start()
-                .get(..4)
-                .is_some_and(|word| word.eq_ignore_ascii_case("PROC"))
-        });
-    if is_subprogram {
+    if kind == ProgramKind::Subprogram || has_proc_header(text) {
+        // A subprogram starts with the caller's modal state and feed, unknown here.
         engine.assume_inherited_state();
     }
-    let mut moves = Vec::new();
-    let diagnostics =
-        crate::syntax::visit_blocks(text, config, |line_index, line, block, findings| {
-            if let Some(movement) = engine.apply(line_index, line, block, findings) {
-                moves.push(movement);
-            }
-        });
-    Analysis { moves, diagnostics }
+    engine
+}
+
+/// Whether a line of the program starts with `PROC`: such a program is a subprogram whatever its
+/// file is called.
+pub fn has_proc_header(text: &str) -> bool {
+    crate::syntax::lines_containing(text, b"PROC").any(is_proc_header)
+}
+
+/// Whether a line starts with `PROC`, the header of a subprogram.
+pub fn is_proc_header(line: &str) -> bool {
+    line.trim_start()
+        .get(..4)
+        .is_some_and(|word| word.eq_ignore_ascii_case("PROC"))
 }

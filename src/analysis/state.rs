@@ -17,9 +17,21 @@ pub const PLANE_AXES: [(&str, &str); 3] = [("X", "Y"), ("Z", "X"), ("Y", "Z")];
 pub struct ModalState {
     /// The active G function of each group, by group number; `None` for groups without a modal value.
     pub groups: [Option<GCode>; GROUP_COUNT],
-    /// The last programmed position of each configured axis (same order as the configuration), in the
-    /// basic unit system and as a radius on transverse axes. `None` is unknown.
+    /// The workpiece set-point of each configured axis (same order as the configuration): the machine
+    /// set-point expressed in the active frames (`$P_EP`), in the basic unit system and as a radius on
+    /// transverse axes. It equals the last programmed value until a frame or offset changes (reference
+    /// §3.9). `None` is unknown.
     pub positions: Vec<Option<f64>>,
+    /// The last programmed workpiece value of each axis, which a G91 move adds to while SD42440 = 1,
+    /// so that the increment also traverses a frame change (reference §3.6).
+    pub programmed: Vec<Option<f64>>,
+    /// The machine set-point of each axis (basic coordinate system, without tool offsets), `None` when
+    /// unknown.
+    pub machine: Vec<Option<f64>>,
+    /// The active settable offset (group 8) per axis, `None` where unknown.
+    pub offset: Vec<Option<f64>>,
+    /// The stored data of the settable frames (`$P_UIFR`).
+    pub settable_data: crate::analysis::offsets::SettableData,
     /// Whether an axis has been programmed or otherwise affected, so that previews leave out axes a
     /// program never uses.
     pub touched: Vec<bool>,
@@ -30,6 +42,9 @@ pub struct ModalState {
     /// The programmable frame; `None` when it cannot be followed (a frame instruction with unknown
     /// values, a spatial rotation, a transformation, a call).
     pub frame: Option<crate::analysis::frame::Frame>,
+    /// With MD18600 = 1, the fine part of the programmable translation (in the frame's parent
+    /// coordinates), which `frame` includes; `None` when unknown. Meaningful only while `frame` is known.
+    pub fine_translation: Option<[f64; 3]>,
     /// The polar pole of each plane (G17, G18, G19).
     pub poles: [Pole; 3],
     /// The stored polar angle AP in degrees (`None` after a pole or plane change, or when unknown).
@@ -99,10 +114,15 @@ impl ModalState {
         let mut state = ModalState {
             groups: [None; GROUP_COUNT],
             positions: vec![None; config.axes.len()],
+            programmed: vec![None; config.axes.len()],
+            machine: vec![None; config.axes.len()],
+            offset: vec![None; config.axes.len()],
+            settable_data: Default::default(),
             touched: vec![false; config.axes.len()],
             feed: None,
             variables: Variables::default(),
             frame: Some(crate::analysis::frame::Frame::IDENTITY),
+            fine_translation: Some([0.0; 3]),
             poles: [Pole::Undefined; 3],
             polar_angle: None,
             polar_radius: None,
@@ -124,7 +144,24 @@ impl ModalState {
                 }
             }
         }
+        state.offset = state.selected_offset(config);
         state
+    }
+
+    /// The offset the active group-8 function selects from the stored data; unknown when the group is.
+    pub fn selected_offset(&self, config: &MachineConfig) -> Vec<Option<f64>> {
+        match self.groups[8].and_then(crate::analysis::offsets::frame_index) {
+            Some(index) => self.settable_data.values(config, index),
+            None => vec![None; config.axes.len()],
+        }
+    }
+
+    /// The axis is programmed to `value` (workpiece coordinates): its set-point and last programmed
+    /// value.
+    pub fn program(&mut self, index: usize, value: Option<f64>) {
+        self.positions[index] = value;
+        self.programmed[index] = value;
+        self.touched[index] = true;
     }
 
     pub fn set_modal(&mut self, code: GCode) {
@@ -213,6 +250,10 @@ impl ModalState {
             self.groups[group] = None;
         }
         self.poles = [Pole::Unknown; 3];
+        // The caller's frames are not known either, nor whether it changed the stored offsets.
+        self.frame = None;
+        self.offset.iter_mut().for_each(|value| *value = None);
+        self.settable_data.forget_all();
     }
 
     /// The first and second axis of the active plane (see [`PLANE_AXES`]); `None` when inherited.
@@ -230,16 +271,12 @@ impl ModalState {
         }
     }
 
-    /// Whether machine coordinates equal programmed ones: no settable offset (G500), no programmable
-    /// frame. Offset values are machine data the program does not contain.
-    pub fn machine_equals_programmed(&self) -> bool {
-        self.frame.is_some_and(|frame| frame.is_identity()) && self.active_is(8, "G500")
-    }
-
-    /// Whether machine coordinates can be computed: a known programmable frame and no settable offset
-    /// (G500): the offset values are machine data the program does not contain.
+    /// Whether some machine coordinate of an axis the program uses is known.
     pub fn machine_known(&self) -> bool {
-        self.frame.is_some() && self.active_is(8, "G500")
+        self.machine
+            .iter()
+            .zip(&self.touched)
+            .any(|(machine, touched)| *touched && machine.is_some())
     }
 
     /// Every axis position becomes unknown: a subprogram, cycle or transformation the engine cannot see
@@ -254,7 +291,21 @@ impl ModalState {
             }
             *position = None;
         }
+        self.programmed.iter_mut().for_each(|value| *value = None);
+        self.machine.iter_mut().for_each(|value| *value = None);
     }
+}
+
+/// How the program shows an axis value kept internally (a radius on a transverse axis): doubled
+/// under diameter display (`shows_diameter`, from [`ModalState::shows_diameter`]), unknown while the
+/// display mode is unknown, and unknown when doubling overflows the range of a double.
+pub fn shown_value(transverse: bool, shows_diameter: Option<bool>, value: f64) -> Option<f64> {
+    if !transverse {
+        return Some(value);
+    }
+    shows_diameter
+        .map(|diameter| if diameter { value * 2.0 } else { value })
+        .filter(|shown| shown.is_finite())
 }
 
 #[cfg(test)]

@@ -13,6 +13,9 @@ use std::io::{self, Write};
 use std::path::{Path, PathBuf};
 use std::rc::Rc;
 
+/// The most findings the human format prints for one file; the summary still counts all of them.
+pub(crate) const MAX_HUMAN_FINDINGS_PER_FILE: usize = 1_000;
+
 /// Runs `check` and returns the exit code. Problems with inputs (unreadable paths, bad configuration
 /// files) go to `stderr` and do not stop the run, so one bad file does not hide the findings in the
 /// others; the `Err` case is only a failure to write the output itself.
@@ -90,13 +93,15 @@ pub(crate) fn run_check(
         let kind = crate::analysis::ProgramKind::from_extension(
             path.extension().and_then(|extension| extension.to_str()),
         );
-        let line_diagnostics =
-            crate::analysis::analyze_program(&source.text, &config, kind).diagnostics;
+        let line_diagnostics = crate::analysis::diagnose_program(&source.text, &config, kind);
         let lines = ProgramLines::new(&source.text);
         let path_text = path.display().to_string();
-        for line_diagnostic in &line_diagnostics {
+        for (index, line_diagnostic) in line_diagnostics.iter().enumerate() {
             counts.add(line_diagnostic.diagnostic.severity);
             match options.format {
+                // A file of junk (a binary, an archive) can give a million findings: a person reads
+                // the first ones, so the rest are counted in the summary but not printed.
+                OutputFormat::Human if index >= MAX_HUMAN_FINDINGS_PER_FILE => {}
                 OutputFormat::Human => {
                     report::write_human(stdout, &path_text, &lines, line_diagnostic)?
                 }
@@ -111,6 +116,15 @@ pub(crate) fn run_check(
                     n_json_diagnostics += 1;
                 }
             }
+        }
+        if options.format == OutputFormat::Human
+            && line_diagnostics.len() > MAX_HUMAN_FINDINGS_PER_FILE
+        {
+            writeln!(
+                stdout,
+                "{path_text}: {} more findings not shown (the first {MAX_HUMAN_FINDINGS_PER_FILE} of each file are; --format json lists all)",
+                line_diagnostics.len() - MAX_HUMAN_FINDINGS_PER_FILE
+            )?;
         }
     }
     match options.format {

@@ -24,6 +24,7 @@
 mod args;
 mod check;
 pub(crate) mod preview;
+mod preview_json;
 mod preview_svg;
 mod report;
 pub mod source_file;

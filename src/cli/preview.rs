@@ -1,13 +1,13 @@
 //! `preview`: the resolved moves of one program as JSON or CSV, for tools and for the toolpath view.
 
 use super::args::{PreviewFormat, PreviewOptions};
+use super::preview_json::{self, round};
 use super::report::ProgramLines;
 use super::source_file::read_source_file;
 use super::{EXIT_ERRORS_FOUND, EXIT_OK, EXIT_TROUBLE};
-use crate::analysis::{analyze_program, Move, ProgramKind};
+use crate::analysis::{analyze_program, visit_moves, Move, ProgramKind};
 use crate::config::{discover_config_file, load_config_file, MachineConfig};
 use crate::diagnostics::{LineDiagnostic, Severity, Span};
-use serde_json::{json, Map, Value};
 use std::io::{self, Write};
 use std::path::Path;
 
@@ -40,16 +40,47 @@ pub(crate) fn run_preview(
             .extension()
             .and_then(|extension| extension.to_str()),
     );
-    let analysis = analyze_program(&source.text, &config, kind);
-    match options.format {
-        PreviewFormat::Json => write_json(stdout, options, &config, &source.text, &analysis)?,
-        PreviewFormat::Csv => write_csv(stdout, &config, &analysis.moves)?,
-        PreviewFormat::Svg => {
-            super::preview_svg::write_svg(stdout, &config, &analysis.moves, options.max_segments)?
+    let diagnostics = match options.format {
+        PreviewFormat::Json => {
+            let mut out = io::BufWriter::with_capacity(1 << 16, stdout);
+            let file = options.path.display().to_string();
+            preview_json::write_header(&mut out, &file, config.metric)?;
+            let mut first = true;
+            let mut written = Ok(());
+            let diagnostics = visit_moves(&source.text, &config, kind, |movement| {
+                if written.is_ok() {
+                    written = preview_json::write_move(&mut out, movement, first);
+                    first = false;
+                }
+            });
+            written?;
+            let lines = ProgramLines::new(&source.text);
+            preview_json::write_footer(&mut out, &diagnostics, &|item| {
+                lines.columns(item.line, item.diagnostic.span)
+            })?;
+            out.flush()?;
+            diagnostics
         }
-    }
-    let has_errors = analysis
-        .diagnostics
+        PreviewFormat::Csv => {
+            let mut out = io::BufWriter::with_capacity(1 << 16, stdout);
+            write_csv_header(&mut out, &config)?;
+            let mut written = Ok(());
+            let diagnostics = visit_moves(&source.text, &config, kind, |movement| {
+                if written.is_ok() {
+                    written = write_csv_row(&mut out, &config, movement);
+                }
+            });
+            written?;
+            out.flush()?;
+            diagnostics
+        }
+        PreviewFormat::Svg => {
+            let analysis = analyze_program(&source.text, &config, kind);
+            super::preview_svg::write_svg(stdout, &config, &analysis.moves, options.max_segments)?;
+            analysis.diagnostics
+        }
+    };
+    let has_errors = diagnostics
         .iter()
         .any(|item| item.diagnostic.severity == Severity::Error);
     Ok(if has_errors {
@@ -59,31 +90,9 @@ pub(crate) fn run_preview(
     })
 }
 
-/// Writes the document move by move: a program of a million blocks must not build a tree of a million
-/// JSON values in memory first.
-fn write_json(
-    stdout: &mut dyn Write,
-    options: &PreviewOptions,
-    config: &MachineConfig,
-    text: &str,
-    analysis: &crate::analysis::Analysis,
-) -> io::Result<()> {
-    let mut out = io::BufWriter::new(stdout);
-    let lines = ProgramLines::new(text);
-    write_preview_json(
-        &mut out,
-        &options.path.display().to_string(),
-        config.metric,
-        &analysis.moves,
-        &analysis.diagnostics,
-        &mut |line_idx, span| lines.columns(line_idx, span),
-    )?;
-    out.flush()
-}
-
-/// The JSON document of `preview` (and of the language server's `sinumerik.endpointPreview`) for
-/// `moves` and `diagnostics` of the program `file`; `columns` gives the 1-based character columns
-/// of a span in a 0-based line.
+/// The JSON document of `preview` for `moves` and `diagnostics` of the program `file`, as the language
+/// server's `sinumerik.endpointPreview` returns it; `columns` gives the 1-based character columns of
+/// a span in a 0-based line.
 pub(crate) fn write_preview_json(
     out: &mut dyn Write,
     file: &str,
@@ -92,36 +101,14 @@ pub(crate) fn write_preview_json(
     diagnostics: &[LineDiagnostic],
     columns: &mut dyn FnMut(usize, Span) -> (usize, usize),
 ) -> io::Result<()> {
-    let header = json!({
-        "file": file,
-        "units": if metric { "mm" } else { "inch" },
-    });
-    let header = serde_json::to_string(&header)?;
-    // The header object without its closing brace, then the two arrays.
-    write!(out, "{},\n\"moves\": [", &header[..header.len() - 1])?;
+    preview_json::write_header(out, file, metric)?;
     for (index, movement) in moves.iter().enumerate() {
-        let separator = if index == 0 { "\n" } else { ",\n" };
-        write!(out, "{separator}  ")?;
-        serde_json::to_writer(&mut *out, &move_json(movement))?;
+        preview_json::write_move(out, movement, index == 0)?;
     }
-    write!(out, "\n],\n\"diagnostics\": [")?;
-    for (index, item) in diagnostics.iter().enumerate() {
-        let (column, end_column) = columns(item.line, item.diagnostic.span);
-        let separator = if index == 0 { "\n" } else { ",\n" };
-        write!(out, "{separator}  ")?;
-        serde_json::to_writer(
-            &mut *out,
-            &json!({
-                "line": item.line + 1,
-                "column": column,
-                "end_column": end_column,
-                "severity": item.diagnostic.severity.as_str(),
-                "code": item.diagnostic.code.as_str(),
-                "message": item.diagnostic.message,
-            }),
-        )?;
-    }
-    writeln!(out, "\n]}}")
+    let columns = std::cell::RefCell::new(columns);
+    preview_json::write_footer(out, diagnostics, &|item| {
+        (columns.borrow_mut())(item.line, item.diagnostic.span)
+    })
 }
 
 /// The 1-based character columns of a span in one line of text.
@@ -140,69 +127,35 @@ fn config_for(options: &PreviewOptions) -> Result<MachineConfig, String> {
     }
 }
 
-fn axes_json(values: &[(std::sync::Arc<str>, f64)]) -> Value {
-    let mut map = Map::new();
-    for (name, value) in values {
-        map.insert(name.to_string(), json!(round(*value)));
+fn write_csv_header(out: &mut dyn Write, config: &MachineConfig) -> io::Result<()> {
+    write!(out, "line,block,motion")?;
+    for axis in &config.axes {
+        write!(out, ",{}", axis.name)?;
     }
-    Value::Object(map)
+    writeln!(out, ",feed,uncertain")
 }
 
-/// Rounds away floating-point noise (1e-9 mm) so that `58.0` does not print as `57.99999999999999`.
-fn round(value: f64) -> f64 {
-    let rounded = (value * 1e9).round() / 1e9;
-    if rounded == 0.0 {
-        0.0
-    } else {
-        rounded
-    }
-}
-
-fn move_json(movement: &Move) -> Value {
-    json!({
-        "line": movement.line + 1,
-        "block": movement.block_number,
-        "motion": movement.motion,
-        "start": axes_json(&movement.start),
-        "end": axes_json(&movement.end),
-        "mcs": movement.machine.as_ref().map(|values| axes_json(values)),
-        "arc": movement.arc.as_ref().map(|arc| json!({
-            "centre": axes_json(&arc.centre),
-            "radius": round(arc.radius),
-            "direction": if arc.clockwise { "cw" } else { "ccw" },
-            "sweep": round(arc.sweep),
-        })),
-        "feed": movement.feed.map(round),
-        "uncertain": movement.uncertain.iter().map(|name| name.as_ref()).collect::<Vec<&str>>(),
-    })
-}
-
-fn write_csv(stdout: &mut dyn Write, config: &MachineConfig, moves: &[Move]) -> io::Result<()> {
-    let names: Vec<&str> = config.axes.iter().map(|axis| axis.name.as_str()).collect();
-    write!(stdout, "line,block,motion")?;
-    for name in &names {
-        write!(stdout, ",{name}")?;
-    }
-    writeln!(stdout, ",feed,uncertain")?;
-    for movement in moves {
-        write!(
-            stdout,
-            "{},{},{}",
-            movement.line + 1,
-            movement.block_number.as_deref().unwrap_or(""),
-            movement.motion
-        )?;
-        for name in &names {
-            match movement.end.iter().find(|(axis, _)| axis.as_ref() == *name) {
-                Some((_, value)) => write!(stdout, ",{}", round(*value))?,
-                None => write!(stdout, ",")?,
-            }
+fn write_csv_row(out: &mut dyn Write, config: &MachineConfig, movement: &Move) -> io::Result<()> {
+    write!(
+        out,
+        "{},{},{}",
+        movement.line + 1,
+        movement.block_number.as_deref().unwrap_or(""),
+        movement.motion
+    )?;
+    for axis in &config.axes {
+        match movement
+            .end
+            .iter()
+            .find(|(name, _)| name.as_ref() == axis.name.as_str())
+        {
+            Some((_, value)) => write!(out, ",{}", round(*value))?,
+            None => write!(out, ",")?,
         }
-        let feed = movement
-            .feed
-            .map(|feed| round(feed).to_string())
-            .unwrap_or_default();
-        writeln!(stdout, ",{feed},{}", movement.uncertain.join(" "))?;
     }
-    Ok(())
+    let feed = movement
+        .feed
+        .map(|feed| round(feed).to_string())
+        .unwrap_or_default();
+    writeln!(out, ",{feed},{}", movement.uncertain.join(" "))
 }

@@ -28,13 +28,21 @@ fn plane_value(values: &[(std::sync::Arc<str>, f64)], axis: &str, halve: bool) -
         .map(|(_, value)| if halve { value / 2.0 } else { *value })
 }
 
-fn segments(config: &MachineConfig, moves: &[Move], plane: (&str, &str)) -> Vec<Segment> {
+/// Coordinates beyond this (in mm or inch) are no toolpath a machine follows, and the picture's extent
+/// computed from them could overflow to infinity (an SVG with `viewBox="-inf NaN inf inf"`, found with
+/// hostile inputs): segments reaching beyond it are left out and counted in the title.
+const MAX_DRAWN_COORDINATE: f64 = 1e15;
+
+/// The segments of the picture, and how many were left out for coordinates beyond
+/// [`MAX_DRAWN_COORDINATE`].
+fn segments(config: &MachineConfig, moves: &[Move], plane: (&str, &str)) -> (Vec<Segment>, usize) {
     let transverse = |axis: &str| {
         config
             .axis(axis)
             .is_some_and(|axis| axis.kind == AxisKind::Transverse)
     };
     let mut out = Vec::new();
+    let mut left_out = 0;
     for movement in moves {
         if movement.plane != Some((plane.0, plane.1)) && movement.plane.is_some() {
             continue;
@@ -53,6 +61,15 @@ fn segments(config: &MachineConfig, moves: &[Move], plane: (&str, &str)) -> Vec<
             let centre = point(&arc.centre)?;
             Some((arc.radius, !arc.clockwise, arc.sweep, centre))
         });
+        let drawable =
+            |(x, y): (f64, f64)| x.abs() <= MAX_DRAWN_COORDINATE && y.abs() <= MAX_DRAWN_COORDINATE;
+        let arc_drawable = arc.is_none_or(|(radius, _, _, centre)| {
+            drawable(centre) && radius <= MAX_DRAWN_COORDINATE
+        });
+        if !(drawable(from) && drawable(to) && arc_drawable) {
+            left_out += 1;
+            continue;
+        }
         out.push(Segment {
             line: movement.line,
             rapid: movement.motion == "G0",
@@ -62,7 +79,7 @@ fn segments(config: &MachineConfig, moves: &[Move], plane: (&str, &str)) -> Vec<
             last_line: movement.line,
         });
     }
-    out
+    (out, left_out)
 }
 
 /// Joins runs of `stride` consecutive segments of the same kind into straight segments from the
@@ -99,7 +116,7 @@ pub(crate) fn write_svg(
         .iter()
         .find_map(|movement| movement.plane)
         .unwrap_or(("X", "Y"));
-    let mut pieces = segments(config, moves, plane);
+    let (mut pieces, left_out) = segments(config, moves, plane);
     if pieces.len() > max_segments.max(1) {
         let stride = pieces.len().div_ceil(max_segments.max(1));
         pieces = thin(pieces, stride);
@@ -135,10 +152,15 @@ pub(crate) fn write_svg(
     )?;
     writeln!(
         out,
-        "<title>toolpath in the {}/{} plane ({} segments)</title>",
+        "<title>toolpath in the {}/{} plane ({} segments{})</title>",
         plane.0,
         plane.1,
-        pieces.len()
+        pieces.len(),
+        if left_out > 0 {
+            format!(", {left_out} left out: coordinates beyond 1e15")
+        } else {
+            String::new()
+        }
     )?;
     writeln!(
         out,

@@ -15,6 +15,11 @@
 //! max_skip_level = 9            # highest skip level /N offered, 0 to 9
 //! max_block_length = 512        # longest block in characters, comment included, greater than 0
 //! r_parameters = 100            # MD28050: number of R parameters
+//! frame_offset_incr_prog = 1    # SD42440: 1 = G91 after an offset change also traverses the change, 0 = not
+//! mm_frame_fine_trans = 0       # MD18600: 1 = ATRANS and G59 write a fine translation kept by TRANS and G58
+//!
+//! [offsets]                     # settable work offsets G500, G54 ... G57, G505 ... G599 ($P_UIFR)
+//! G54 = { X = 100, Y = 50 }     # per axis in the basic system (degrees on rotary axes, radius on X of a lathe)
 //!
 //! [axes]                        # when present, replaces the kind's default axes entirely
 //! X = "transverse"              # linear | transverse | rotary | modulo
@@ -30,7 +35,9 @@
 //!
 //! Defaults: `kind = "mill"` has the axes X, Y, Z (linear) and A, B, C (modulo) and no extra reset G functions;
 //! `kind = "turn"` has X (transverse), Z (linear) and C (modulo) and `reset_gcodes = ["G18", "DIAMON"]`. Both
-//! are metric, with the other values as shown above.
+//! are metric, with the other values as shown above. No settable offset is configured: G500 is zero, every
+//! other offset (G54 ...) is unknown, so machine coordinates under it are unknown. A configured offset's
+//! axes that are not listed are 0.
 //!
 //! Names and values are not case-sensitive (`x = "Linear"` is axis X); axis names are 1 to 8 letters, digits
 //! or underscores starting with a letter. A TOML table has no order, so the axes are kept as X, Y, Z first
@@ -184,6 +191,8 @@ struct RawConfig {
     diagnostics: BTreeMap<String, String>,
     #[serde(default)]
     check: RawCheck,
+    #[serde(default)]
+    offsets: BTreeMap<String, BTreeMap<String, f64>>,
 }
 
 /// The `[machine]` table. Numbers are read as `i64` and range-checked here, which gives a clearer
@@ -199,6 +208,8 @@ struct RawMachine {
     max_skip_level: Option<i64>,
     max_block_length: Option<i64>,
     r_parameters: Option<i64>,
+    frame_offset_incr_prog: Option<i64>,
+    mm_frame_fine_trans: Option<i64>,
 }
 
 /// The `[check]` table.
@@ -353,8 +364,78 @@ impl RawConfig {
             })?;
         }
 
+        if let Some(value) = machine.frame_offset_incr_prog {
+            config.frame_offset_incr_prog = match value {
+                0 => false,
+                1 => true,
+                _ => {
+                    return Err(invalid(
+                        &[key("machine"), key("frame_offset_incr_prog")],
+                        format!("must be 0 or 1 (SD42440), found {value}"),
+                    ))
+                }
+            };
+        }
+
+        if let Some(value) = machine.mm_frame_fine_trans {
+            config.frame_fine_trans = match value {
+                0 => false,
+                1 => true,
+                _ => {
+                    return Err(invalid(
+                        &[key("machine"), key("mm_frame_fine_trans")],
+                        format!("must be 0 or 1 (MD18600), found {value}"),
+                    ))
+                }
+            };
+        }
+
         if let Some(axes) = &self.axes {
             config.axes = convert_axes(axes)?;
+        }
+
+        for (name, values) in &self.offsets {
+            let key_path = [key("offsets"), key(name)];
+            let index = settable_frame_index(name).ok_or_else(|| {
+                invalid_key(
+                    &key_path,
+                    format!("{name:?} is not a settable work offset (expected G500, G54 to G57 or G505 to G599)"),
+                )
+            })?;
+            let mut axes = Vec::with_capacity(values.len());
+            for (axis_name, value) in values {
+                let axis_path = [key("offsets"), key(name), key(axis_name)];
+                let Some(axis) = config.axis(axis_name) else {
+                    return Err(invalid_key(
+                        &axis_path,
+                        format!("{axis_name:?} is not an axis of this machine"),
+                    ));
+                };
+                if !value.is_finite() {
+                    return Err(invalid(
+                        &axis_path,
+                        format!("must be a finite number, found {value}"),
+                    ));
+                }
+                if axes.iter().any(|(name, _)| *name == axis.name) {
+                    return Err(invalid_key(
+                        &axis_path,
+                        format!(
+                            "axis {} is listed twice (axis names are not case-sensitive)",
+                            axis.name
+                        ),
+                    ));
+                }
+                axes.push((axis.name.clone(), *value));
+            }
+            // In the order of the configured axes, as everywhere else.
+            axes.sort_by_key(|(name, _)| config.axes.iter().position(|axis| axis.name == *name));
+            if config.settable_offsets.insert(index, axes).is_some() {
+                return Err(invalid_key(
+                    &key_path,
+                    format!("offset {name} is listed twice (names are not case-sensitive)"),
+                ));
+            }
         }
 
         for (code_text, severity_text) in &self.diagnostics {
@@ -403,6 +484,21 @@ impl RawConfig {
         }
 
         Ok(config)
+    }
+}
+
+/// The `$P_UIFR` index of a settable work offset by its G function: G500 is 0, G54 to G57 are 1 to 4,
+/// G505 to G599 are 5 to 99.
+fn settable_frame_index(name: &str) -> Option<u8> {
+    let digits = name.strip_prefix(['G', 'g'])?;
+    if digits.is_empty() || !digits.bytes().all(|byte| byte.is_ascii_digit()) || digits.len() > 3 {
+        return None;
+    }
+    match digits.parse::<u16>().ok()? {
+        500 => Some(0),
+        number @ 54..=57 => Some((number - 53) as u8),
+        number @ 505..=599 => Some((number - 500) as u8),
+        _ => None,
     }
 }
 
@@ -869,6 +965,49 @@ extensions = ["MPF", "spf", "nc"]
 
         let error = error_of("[diagnostics]\nS101 = \"error\"\ns101 = \"hint\"\n");
         assert!(error.message.contains("listed twice"), "{error}");
+    }
+
+    #[test]
+    fn settable_offsets_and_sd42440_are_read() {
+        let config = parse(
+            "[machine]\nframe_offset_incr_prog = 0\nmm_frame_fine_trans = 1\n[offsets]\nG54 = { x = 100, Y = 50.5 }\ng505 = { A = 90 }\nG500 = {}\n",
+        )
+        .unwrap();
+        assert!(!config.frame_offset_incr_prog);
+        assert!(config.frame_fine_trans);
+        assert_eq!(
+            config.settable_offset(1),
+            Some(&[("X".to_string(), 100.0), ("Y".to_string(), 50.5)][..])
+        );
+        assert_eq!(
+            config.settable_offset(5),
+            Some(&[("A".to_string(), 90.0)][..])
+        );
+        assert_eq!(config.settable_offset(0), Some(&[][..]));
+        assert_eq!(config.settable_offset(2), None);
+        assert!(MachineConfig::mill().frame_offset_incr_prog);
+        assert_eq!(MachineConfig::mill().settable_offset(0), Some(&[][..]));
+    }
+
+    #[test]
+    fn bad_offsets_are_named() {
+        let error = error_of("[offsets]\nG58 = { X = 1 }\n");
+        assert_eq!(error.key.as_deref(), Some("offsets.G58"));
+        assert!(
+            error.message.contains("not a settable work offset"),
+            "{error}"
+        );
+        let error = error_of("[offsets]\nG54 = { Q = 1 }\n");
+        assert_eq!(error.key.as_deref(), Some("offsets.G54.Q"));
+        assert!(error.message.contains("not an axis"), "{error}");
+        let error = error_of("[offsets]\nG54 = { X = \"1\" }\n");
+        assert_eq!(error.key.as_deref(), Some("offsets.G54.X"));
+        let error = error_of("[offsets]\nG54 = { X = 1 }\ng54 = { X = 2 }\n");
+        assert!(error.message.contains("listed twice"), "{error}");
+        let error = error_of("[machine]\nframe_offset_incr_prog = 2\n");
+        assert_eq!(error.key.as_deref(), Some("machine.frame_offset_incr_prog"));
+        let error = error_of("[machine]\nmm_frame_fine_trans = -1\n");
+        assert_eq!(error.key.as_deref(), Some("machine.mm_frame_fine_trans"));
     }
 
     #[test]

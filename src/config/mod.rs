@@ -77,6 +77,17 @@ pub struct MachineConfig {
     pub severity_overrides: BTreeMap<Code, Severity>,
     /// File extensions (without dot, compared case-insensitively) that `check` reads from folders.
     pub extensions: Vec<String>,
+    /// The settable work offsets (`$P_UIFR`) the machine holds, by frame index (0 = G500, 1 = G54 ...
+    /// 4 = G57, 5 = G505 ... 99 = G599): the translation of each listed axis in the basic unit system
+    /// (degrees on rotary axes, a radius on a transverse axis); axes not listed are 0. An offset that is
+    /// not configured is unknown, except G500, which is zero unless configured (reference §11.1).
+    pub settable_offsets: BTreeMap<u8, Vec<(String, f64)>>,
+    /// SD42440 `FRAME_OFFSET_INCR_PROG`: whether a G91 move after a frame or offset change also
+    /// traverses the change (1, the default), or only the programmed path (0) (reference §3.6).
+    pub frame_offset_incr_prog: bool,
+    /// MD18600 `MM_FRAME_FINE_TRANS`: whether the programmable translation has a fine part, which
+    /// ATRANS and G59 write while TRANS and G58 write the coarse part (reference §7.2).
+    pub frame_fine_trans: bool,
 }
 
 impl Default for MachineConfig {
@@ -107,6 +118,9 @@ impl MachineConfig {
             r_parameter_count: 100,
             severity_overrides: BTreeMap::new(),
             extensions: vec!["mpf".to_string(), "spf".to_string()],
+            settable_offsets: BTreeMap::new(),
+            frame_offset_incr_prog: true,
+            frame_fine_trans: false,
         }
     }
 
@@ -145,6 +159,16 @@ impl MachineConfig {
             .get(&code)
             .copied()
             .unwrap_or_else(|| code.default_severity())
+    }
+
+    /// The configured values of settable frame `index` ($P_UIFR), G500 (index 0) being zero unless
+    /// configured; `None` when the machine data are not configured.
+    pub fn settable_offset(&self, index: u8) -> Option<&[(String, f64)]> {
+        match self.settable_offsets.get(&index) {
+            Some(values) => Some(values),
+            None if index == 0 => Some(&[]),
+            None => None,
+        }
     }
 
     /// Whether `check` should read a file with this extension when it walks a folder.

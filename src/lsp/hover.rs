@@ -166,6 +166,10 @@ fn resolution_from_movement(
         unit_factor,
         read_as_diameter: axis_kind == Some(AxisKind::Transverse)
             && movement.is_some_and(|movement| movement.transverse_as_diameter),
+        shown_as_diameter: axis_kind == Some(AxisKind::Transverse)
+            && movement.is_some_and(|movement| movement.transverse_as_diameter),
+        // Built from the move alone: the arithmetic is not checked, so it is not spelled out.
+        explained: false,
         start,
         end,
         machine: movement

@@ -70,18 +70,50 @@ pub fn visit_blocks(
 /// The names defined with `DEFINE name AS ...` anywhere in `text`: a macro may be used before the line
 /// that defines it is reached when it comes from a definition file, so they are collected up front.
 pub fn macro_names(text: &str) -> impl Iterator<Item = &str> {
-    lines::line_ranges(text).filter_map(move |(start, end)| {
-        let line = &text[start..end];
-        let upper_position = find_ascii_case_insensitive(line, "DEFINE")?;
-        let rest = line[upper_position + "DEFINE".len()..].trim_start();
-        let name_end = rest
-            .find(|character: char| !(character.is_ascii_alphanumeric() || character == '_'))
-            .unwrap_or(rest.len());
-        let name = &rest[..name_end];
-        let after = rest[name_end..].trim_start();
-        (!name.is_empty() && after.len() >= 2 && after.as_bytes()[..2].eq_ignore_ascii_case(b"AS"))
-            .then_some(name)
+    lines_containing(text, b"DEFINE").filter_map(macro_defined_by)
+}
+
+/// The lines of `text` that contain `word` (upper case ASCII), in any letter case, each once. The
+/// search jumps from one occurrence of the word's first letter to the next, so that a program without
+/// the word costs a fast byte scan instead of a walk over its lines.
+pub fn lines_containing<'a>(text: &'a str, word: &'static [u8]) -> impl Iterator<Item = &'a str> {
+    let bytes = text.as_bytes();
+    let first = word[0];
+    let mut position = 0;
+    std::iter::from_fn(move || {
+        while position < bytes.len() {
+            let offset = memchr::memchr2(first, first.to_ascii_lowercase(), &bytes[position..])?;
+            let found = position + offset;
+            position = found + 1;
+            let matches = bytes
+                .get(found..found + word.len())
+                .is_some_and(|candidate| candidate.eq_ignore_ascii_case(word));
+            if !matches {
+                continue;
+            }
+            let line_start =
+                memchr::memrchr2(b'\n', b'\r', &bytes[..found]).map_or(0, |end| end + 1);
+            let line_end = memchr::memchr2(b'\n', b'\r', &bytes[found..])
+                .map_or(bytes.len(), |offset| found + offset);
+            position = line_end;
+            // Both ends are ASCII line breaks or the ends of the text: character boundaries.
+            return Some(&text[line_start..line_end]);
+        }
+        None
     })
+}
+
+/// The name a line defines with `DEFINE name AS ...`, if it defines one.
+pub fn macro_defined_by(line: &str) -> Option<&str> {
+    let upper_position = find_ascii_case_insensitive(line, "DEFINE")?;
+    let rest = line[upper_position + "DEFINE".len()..].trim_start();
+    let name_end = rest
+        .find(|character: char| !(character.is_ascii_alphanumeric() || character == '_'))
+        .unwrap_or(rest.len());
+    let name = &rest[..name_end];
+    let after = rest[name_end..].trim_start();
+    (!name.is_empty() && after.len() >= 2 && after.as_bytes()[..2].eq_ignore_ascii_case(b"AS"))
+        .then_some(name)
 }
 
 fn find_ascii_case_insensitive(haystack: &str, needle: &str) -> Option<usize> {
@@ -89,4 +121,18 @@ fn find_ascii_case_insensitive(haystack: &str, needle: &str) -> Option<usize> {
     haystack.as_bytes()[..comment_start]
         .windows(needle.len())
         .position(|window| window.eq_ignore_ascii_case(needle.as_bytes()))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn lines_containing_finds_each_line_once_in_any_case_and_line_end() {
+        let text = "G0 X1\r\ndefine A AS G1 ; DEFINE\rN10 Define B AS G2\nX2";
+        let found: Vec<&str> = lines_containing(text, b"DEFINE").collect();
+        assert_eq!(found, ["define A AS G1 ; DEFINE", "N10 Define B AS G2"]);
+        assert_eq!(macro_names(text).collect::<Vec<_>>(), ["A", "B"]);
+        assert_eq!(lines_containing("DEFIN", b"DEFINE").count(), 0);
+    }
 }

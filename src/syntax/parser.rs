@@ -43,8 +43,20 @@ fn shorten_long_quotes(message: String) -> String {
             out.push_str(part);
         }
     }
+    // A quoted text that holds a backtick itself ends its quote early, so the rest of it was not
+    // shortened above: keep the start and the end of such a message (found by the fuzzer).
+    let character_count = out.chars().count();
+    if character_count > MAX_MESSAGE_CHARACTERS {
+        let tail: String = out.chars().skip(character_count - 80).collect();
+        out = out.chars().take(MAX_MESSAGE_CHARACTERS - 81).collect();
+        out.push('…');
+        out.push_str(&tail);
+    }
     out
 }
+
+/// Longest message, in characters, even when its quotations could not be found.
+const MAX_MESSAGE_CHARACTERS: usize = 300;
 
 /// A reusable parser: keeps its token buffer between lines.
 #[derive(Default)]
@@ -570,6 +582,26 @@ impl<'a> Parser<'a> {
         self.report(Code::InvalidNumber, span, message);
     }
 
+    /// The value of the number token at `span`, or `None` after reporting S133 when it lies beyond the
+    /// range of a double (`1EX400`, a number of ten thousand digits): such a number used to become
+    /// infinity, which must never be shown as a position.
+    fn number_value(&mut self, span: Span) -> Option<f64> {
+        let value = parse_number(self.text(span));
+        if value.is_none() {
+            self.report_number_out_of_range(span);
+        }
+        value
+    }
+
+    fn report_number_out_of_range(&mut self, span: Span) {
+        let text = self.text(span).to_string();
+        self.report(
+            Code::InvalidNumber,
+            span,
+            format!("`{text}` is too large for a number: the control computes with values up to about 1.8EX308"),
+        );
+    }
+
     /// `(TEXT)` where a word belongs: an ISO-dialect comment, which Siemens mode reads as an expression.
     fn parse_parenthesis_comment(&mut self) {
         let open = self.advance();
@@ -937,12 +969,18 @@ impl<'a> Parser<'a> {
         match self.peek() {
             Some(Token::Number) if self.position < self.lexemes.len() => {
                 let number_span = self.advance();
-                let value = parse_number(self.text(number_span)).unwrap_or(0.0);
-                let value = if sign == Some(true) { -value } else { value };
                 let span = self.span_at(start).to(number_span);
+                // A number beyond the range of a double is reported and its value is unknown.
+                let expr = match self.number_value(number_span) {
+                    Some(value) => ValueExpr::Constant {
+                        value: if sign == Some(true) { -value } else { value },
+                        span,
+                    },
+                    None => ValueExpr::Expr(self.push_expr(ExprKind::Error, span)),
+                };
                 Value {
                     modifier: None,
-                    expr: ValueExpr::Constant { value, span },
+                    expr,
                     has_equals: false,
                 }
             }
@@ -1169,8 +1207,13 @@ impl<'a> Parser<'a> {
                     ),
                     fix,
                 );
-                let value = parse_number(&value_text).unwrap_or(0.0);
-                let expr = self.push_expr(ExprKind::Number(value), span);
+                let expr = match parse_number(&value_text) {
+                    Some(value) => self.push_expr(ExprKind::Number(value), span),
+                    None => {
+                        self.report_number_out_of_range(span);
+                        self.push_expr(ExprKind::Error, span)
+                    }
+                };
                 return Value {
                     modifier: Some((modifier, name_token_span)),
                     expr: ValueExpr::Expr(expr),
@@ -2629,24 +2672,23 @@ impl<'a> Parser<'a> {
         match self.peek() {
             Some(Token::Number) => {
                 self.advance();
-                let value = parse_number(self.text(span)).unwrap_or(0.0);
-                self.push_expr(ExprKind::Number(value), span)
+                match self.number_value(span) {
+                    Some(value) => self.push_expr(ExprKind::Number(value), span),
+                    None => self.push_expr(ExprKind::Error, span),
+                }
             }
-            Some(Token::HexNumber) => {
+            Some(token @ (Token::HexNumber | Token::BinaryNumber)) => {
                 self.advance();
                 let text = self.text(span);
-                let value = u64::from_str_radix(&text[2..text.len() - 1], 16)
-                    .map(|value| value as f64)
-                    .unwrap_or(f64::NAN);
-                self.push_expr(ExprKind::Number(value), span)
-            }
-            Some(Token::BinaryNumber) => {
-                self.advance();
-                let text = self.text(span);
-                let value = u64::from_str_radix(&text[2..text.len() - 1], 2)
-                    .map(|value| value as f64)
-                    .unwrap_or(f64::NAN);
-                self.push_expr(ExprKind::Number(value), span)
+                let radix = if token == Token::HexNumber { 16 } else { 2 };
+                // A literal wider than 64 bits was NaN before; it is reported and unknown instead.
+                match u64::from_str_radix(&text[2..text.len() - 1], radix) {
+                    Ok(value) => self.push_expr(ExprKind::Number(value as f64), span),
+                    Err(_) => {
+                        self.report_number_out_of_range(span);
+                        self.push_expr(ExprKind::Error, span)
+                    }
+                }
             }
             Some(Token::BadNumber) | Some(Token::BadQuoted) => {
                 self.advance();
@@ -3150,20 +3192,22 @@ fn is_type_name(upper: &str) -> bool {
     )
 }
 
-/// Parses a number token's text (`10`, `.5`, `1.5EX-3`).
+/// Parses a number token's text (`10`, `.5`, `1.5EX-3`). `None` when the text is not a number or its
+/// value is not finite (beyond about 1.8e308), so that no caller can turn it into an infinite position.
 pub fn parse_number(text: &str) -> Option<f64> {
     if let Some(value) = parse_simple_decimal(text.as_bytes()) {
         return Some(value);
     }
-    // The exponent is written `EX` (`1.5EX-3`).
-    match text.bytes().position(|byte| byte == b'E' || byte == b'e') {
-        None => text.parse().ok(),
+    // The exponent is written `EX` (`1.5EX-3`); the standard parser reads it as `1.5e-3`, correctly
+    // rounded, and gives 0 for `0EX400` where multiplying by 10^400 gave NaN.
+    let value: f64 = match text.bytes().position(|byte| byte == b'E' || byte == b'e') {
+        None => text.parse().ok()?,
         Some(position) => {
-            let mantissa: f64 = text[..position].parse().ok()?;
-            let exponent: i32 = text.get(position + 2..)?.parse().ok()?;
-            Some(mantissa * 10f64.powi(exponent))
+            let exponent = text.get(position + 2..)?;
+            format!("{}e{exponent}", &text[..position]).parse().ok()?
         }
-    }
+    };
+    value.is_finite().then_some(value)
 }
 
 /// Exact fast path for the numbers CAM programs are made of (`123.456`): when the digits form an

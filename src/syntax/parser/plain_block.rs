@@ -144,11 +144,14 @@ impl Parser<'_> {
                     }
                     let kind = self.classify_letter(letter, None);
                     let short = number_end - number_start <= MAX_SIMPLE_DECIMAL_LENGTH;
-                    let magnitude = short
+                    // A number beyond the range of a double is reported by the general parser.
+                    let Some(magnitude) = short
                         .then(|| decimal_from_parts(mantissa, decimals))
                         .flatten()
                         .or_else(|| parse_number(number_text))
-                        .unwrap_or(0.0);
+                    else {
+                        return false;
+                    };
                     let value = if negative { -magnitude } else { magnitude };
                     let expr = ValueExpr::Constant {
                         value,

@@ -1,0 +1,50 @@
+// The status-bar item: the modal state at the cursor from the server's `sinumerik/modalState`
+// request, `{uri, line}` -> `{motion, plane, units, distance, diameter}` (each may be null: unknown).
+
+export interface ModalState {
+  motion: string | null;
+  plane: string | null;
+  units: string | null;
+  distance: string | null;
+  diameter: string | null;
+}
+
+export const MODAL_STATE_REQUEST = 'sinumerik/modalState';
+
+const FIELDS = ['distance', 'units', 'plane', 'motion', 'diameter'] as const;
+
+export function parseModalState(value: unknown): ModalState | null {
+  if (typeof value !== 'object' || value === null) return null;
+  const record = value as Record<string, unknown>;
+  const field = (name: string) => (typeof record[name] === 'string' && record[name] !== '' ? (record[name] as string) : null);
+  return {
+    motion: field('motion'),
+    plane: field('plane'),
+    units: field('units'),
+    distance: field('distance'),
+    diameter: field('diameter'),
+  };
+}
+
+export interface StatusText {
+  text: string;
+  tooltip: string;
+}
+
+const NAMES: Record<(typeof FIELDS)[number], string> = {
+  distance: 'dimensions (G90 absolute / G91 incremental)',
+  units: 'units (G70/G700 inch, G71/G710 metric)',
+  plane: 'working plane',
+  motion: 'motion',
+  diameter: 'diameter programming',
+};
+
+/** `G90 G71 G17 G1` in the order a programmer reads a safety block; unknown fields show `?`. */
+export function formatModalState(state: ModalState, line: number): StatusText {
+  const parts = FIELDS.filter((name) => name !== 'diameter' || state.diameter !== null).map((name) => state[name] ?? '?');
+  const unknown = FIELDS.filter((name) => state[name] === null && name !== 'diameter');
+  const lines = [`Modal state at line ${line + 1} (from the language server):`];
+  for (const name of FIELDS) lines.push(`${NAMES[name]}: ${state[name] ?? 'unknown'}`);
+  if (unknown.length) lines.push('? = unknown here (inherited from a caller, or after a call or a jump)');
+  return { text: parts.join(' '), tooltip: lines.join('\n') };
+}

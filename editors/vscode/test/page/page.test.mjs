@@ -1,0 +1,259 @@
+// The toolpath page in headless Chromium: it draws the demo program (feed solid, rapid dashed, arcs,
+// uncertain moves), highlights the cursor's line, reveals a clicked line, pans and zooms, matches
+// the committed screenshot's outline, and prints its drawing time for a million moves.
+// Set UPDATE_SCREENSHOT=1 to rewrite the baseline and docs/toolpath-preview.png.
+import assert from 'node:assert/strict';
+import * as fs from 'node:fs';
+import { createRequire } from 'node:module';
+import * as path from 'node:path';
+import { after, before, test } from 'node:test';
+import { fileURLToPath, pathToFileURL } from 'node:url';
+import { launch } from './cdp.mjs';
+
+const here = path.dirname(fileURLToPath(import.meta.url));
+const root = path.resolve(here, '..', '..');
+const require = createRequire(import.meta.url);
+const { toolpathHtml } = require(path.join(root, 'out', 'src', 'webview', 'html.js'));
+const baselineFile = path.join(here, 'toolpath.baseline.json');
+const docsScreenshot = path.resolve(root, '..', '..', 'docs', 'toolpath-preview.png');
+const update = process.env.UPDATE_SCREENSHOT === '1';
+
+let page;
+
+function writePage() {
+  const nonce = 'test-nonce';
+  let html = toolpathHtml({ scriptUri: '../../dist/webview.js', cspSource: 'file:', nonce, title: 'demo_mill.mpf' });
+  html = html.replace(`<script nonce="${nonce}"`, `<script nonce="${nonce}" src="harness.js"></script>\n<script nonce="${nonce}"`);
+  const file = path.join(root, 'out', 'page', 'index.html');
+  fs.writeFileSync(file, html);
+  return pathToFileURL(file).href;
+}
+
+async function until(expression, what, timeoutMs = 20000) {
+  const started = Date.now();
+  while (Date.now() - started < timeoutMs) {
+    if (await page.evaluate(expression)) return;
+    await new Promise((resolve) => setTimeout(resolve, 25));
+  }
+  throw new Error(`timed out waiting for ${what}; page said: ${page.consoleMessages.join(' | ')}`);
+}
+
+/** Screen position of a plane point in the page's current view. */
+async function screen(x, y) {
+  const view = await page.evaluate('toolpathDebug.state.view');
+  return [view.offsetX + x * view.scale, view.offsetY - y * view.scale];
+}
+
+/** The canvas's top-left corner in the page, to turn canvas positions into pointer positions. */
+async function canvasOrigin() {
+  return page.evaluate('(() => { const r = document.getElementById("canvas").getBoundingClientRect(); return [r.left, r.top]; })()');
+}
+
+/** Colours (as [r, g, b]) in a square of `radius` pixels around a canvas position. */
+async function colours(x, y, radius = 2) {
+  return page.evaluate(`(() => {
+    const ctx = document.getElementById('canvas').getContext('2d');
+    const data = ctx.getImageData(${Math.round(x)} - ${radius}, ${Math.round(y)} - ${radius}, ${2 * radius + 1}, ${2 * radius + 1}).data;
+    const out = [];
+    for (let i = 0; i < data.length; i += 4) out.push([data[i], data[i + 1], data[i + 2]]);
+    return out;
+  })()`);
+}
+
+function hex(colour) {
+  const n = parseInt(colour.slice(1), 16);
+  return [(n >> 16) & 255, (n >> 8) & 255, n & 255];
+}
+
+function near(a, b, tolerance = 40) {
+  return Math.abs(a[0] - b[0]) + Math.abs(a[1] - b[1]) + Math.abs(a[2] - b[2]) <= tolerance;
+}
+
+const FEED = hex('#3b8eea');
+const RAPID = hex('#e05252');
+const UNCERTAIN = hex('#d7a600');
+const HIGHLIGHT = hex('#ffd500');
+const BACKGROUND = hex('#1e1e1e');
+
+async function hasColour(x, y, colour, radius = 2) {
+  return (await colours(x, y, radius)).some((c) => near(c, colour));
+}
+
+before(async () => {
+  const url = writePage();
+  page = await launch({ width: 900, height: 640 });
+  await page.goto(url);
+  await until('harness.sent.some((m) => m.type === "ready")', 'the page to say it is ready');
+  const preview = fs.readFileSync(path.join(root, 'test', 'fixtures', 'demo_mill.preview.json'), 'utf8');
+  await page.evaluate(`harness.loadPreview(${preview}, 'demo_mill.mpf', 28, null, 4)`);
+  await until('toolpathDebug.state.done && toolpathDebug.state.stats !== null', 'the drawing');
+  await page.evaluate('toolpathDebug.redrawNow()');
+});
+
+after(async () => {
+  await page?.close();
+});
+
+test('the page draws every drawable move and says what it left out', async () => {
+  const state = await page.evaluate('({ count: toolpathDebug.state.packed.count, drawn: toolpathDebug.state.projected.count, status: document.getElementById("status").textContent })');
+  assert.equal(state.count, 23, 'all moves arrived, through several ranges');
+  assert.equal(state.drawn, 22);
+  assert.match(state.status, /demo_mill\.mpf: 23 moves · plane G17 X\/Y · mm · 1 not drawn \(position unknown in this plane\)/);
+});
+
+test('feed moves are solid, rapid moves dashed, arcs round and uncertain moves marked', async () => {
+  // N60 G1 X60 along Y0: solid feed colour at several points.
+  for (const x of [10, 25, 40, 55]) {
+    const [sx, sy] = await screen(x, 0);
+    assert.ok(await hasColour(sx, sy, FEED), `feed colour at X${x} Y0`);
+  }
+  // N150 G0 from X10 Y0 to X35 Y10: rapid colour with gaps.
+  let rapid = 0;
+  let gaps = 0;
+  for (let t = 0.1; t < 0.9; t += 0.02) {
+    const [sx, sy] = await screen(10 + 25 * t, 10 * t);
+    // The centre pixel of a thin line is blended with the background: reddish counts as rapid.
+    const [[r, g, b]] = await colours(sx, sy, 0);
+    if (r > g + 40 && r > b + 40) rapid++;
+    else if (near([r, g, b], BACKGROUND, 30)) gaps++;
+  }
+  assert.ok(rapid >= 5 && gaps >= 5, `dashed: ${rapid} rapid and ${gaps} background samples`);
+  // N170 full circle around X35 Y25 with radius 15.
+  for (const angle of [0.3, 1.9, 3.4, 5.0]) {
+    const [sx, sy] = await screen(35 + 15 * Math.cos(angle), 25 + 15 * Math.sin(angle));
+    assert.ok(await hasColour(sx, sy, FEED), `circle at ${angle} rad`);
+  }
+  // Inside the pocket, off every segment: background.
+  const [bx, by] = await screen(22, 42);
+  assert.ok((await colours(bx, by, 3)).every((c) => near(c, BACKGROUND, 30)), 'empty space stays empty');
+  // N240 G0 X50 Y25 after the label: uncertain.
+  const [ux, uy] = await screen(42.5, 25);
+  assert.ok(await hasColour(ux, uy, UNCERTAIN, 3), 'uncertain colour after the label');
+});
+
+test('the cursor line is highlighted, and a click on a segment reveals its line', async () => {
+  await page.evaluate('harness.setCursor(8)');
+  await until('toolpathDebug.state.cursorLine === 8', 'the cursor message');
+  await page.evaluate('toolpathDebug.redrawNow()');
+  const [hx, hy] = await screen(60 + 10 * Math.cos(-Math.PI / 4), 10 + 10 * Math.sin(-Math.PI / 4));
+  assert.ok(await hasColour(hx, hy, HIGHLIGHT), 'the arc of line 8 is highlighted');
+  const [fx, fy] = await screen(30, 0);
+  assert.ok(!(await hasColour(fx, fy, HIGHLIGHT, 1)), 'line 7 is not');
+
+  const [ox, oy] = await canvasOrigin();
+  const [cx, cy] = await screen(35, 50); // N100 G1 X10 along Y50, line 11
+  await page.hover(ox + cx, oy + cy + 2);
+  assert.match(await page.evaluate('document.getElementById("tip").textContent'), /^line 11 {2}G1 {2}→ X10 Y50 Z-2 F500/);
+  await page.mouse('mousePressed', ox + cx, oy + cy + 2);
+  await page.mouse('mouseReleased', ox + cx, oy + cy + 2);
+  await until('harness.sent.some((m) => m.type === "reveal")', 'a reveal message');
+  assert.deepEqual(await page.evaluate('harness.sent.filter((m) => m.type === "reveal")'), [{ type: 'reveal', line: 11 }]);
+});
+
+test('the wheel zooms around the pointer and a drag pans without revealing a line', async () => {
+  const [ox, oy] = await canvasOrigin();
+  const before = await page.evaluate('toolpathDebug.state.view');
+  const [px, py] = [300, 200];
+  await page.wheel(ox + px, oy + py, -300);
+  await until(`toolpathDebug.state.view.scale > ${before.scale * 1.2}`, 'the zoom');
+  const zoomed = await page.evaluate('toolpathDebug.state.view');
+  const world = (view) => [(px - view.offsetX) / view.scale, (view.offsetY - py) / view.scale];
+  assert.ok(Math.hypot(world(zoomed)[0] - world(before)[0], world(zoomed)[1] - world(before)[1]) < 1e-6, 'the point under the pointer stays');
+  const reveals = await page.evaluate('harness.sent.filter((m) => m.type === "reveal").length');
+  await page.mouse('mousePressed', ox + 400, oy + 300);
+  await page.mouse('mouseMoved', ox + 430, oy + 300);
+  await page.mouse('mouseMoved', ox + 460, oy + 320);
+  await page.mouse('mouseReleased', ox + 460, oy + 320);
+  const panned = await page.evaluate('toolpathDebug.state.view');
+  assert.ok(Math.abs(panned.offsetX - zoomed.offsetX - 60) < 1e-6 && Math.abs(panned.offsetY - zoomed.offsetY - 20) < 1e-6);
+  assert.equal(await page.evaluate('harness.sent.filter((m) => m.type === "reveal").length'), reveals);
+  await page.evaluate('document.getElementById("fit").click()');
+  await page.evaluate('toolpathDebug.redrawNow()');
+});
+
+/** Which cells of a 45 x 30 grid over the canvas hold anything but background. */
+async function inkGrid() {
+  return page.evaluate(`(() => {
+    const canvas = document.getElementById('canvas');
+    const data = canvas.getContext('2d').getImageData(0, 0, canvas.width, canvas.height).data;
+    const columns = 45, rows = 30, grid = [];
+    for (let row = 0; row < rows; row++) {
+      let line = '';
+      for (let column = 0; column < columns; column++) {
+        let ink = false;
+        const x0 = Math.floor(column * canvas.width / columns), x1 = Math.floor((column + 1) * canvas.width / columns);
+        const y0 = Math.floor(row * canvas.height / rows), y1 = Math.floor((row + 1) * canvas.height / rows);
+        for (let y = y0; y < y1 && !ink; y++) for (let x = x0; x < x1 && !ink; x++) {
+          const i = (y * canvas.width + x) * 4;
+          ink = Math.abs(data[i] - 30) + Math.abs(data[i + 1] - 30) + Math.abs(data[i + 2] - 30) > 60;
+        }
+        line += ink ? '#' : '.';
+      }
+      grid.push(line);
+    }
+    return grid;
+  })()`);
+}
+
+test('the drawing matches the committed screenshot outline', async () => {
+  await page.evaluate('harness.setCursor(9)');
+  await until('toolpathDebug.state.cursorLine === 9', 'the cursor message');
+  await page.evaluate('harness.setCursor(8)');
+  await until('toolpathDebug.state.cursorLine === 8', 'the cursor message');
+  await page.evaluate('toolpathDebug.redrawNow()');
+  const grid = await inkGrid();
+  const shot = await page.screenshot();
+  fs.writeFileSync(path.join(root, 'out', 'page', 'toolpath.png'), shot);
+  if (update || !fs.existsSync(baselineFile)) {
+    fs.writeFileSync(baselineFile, JSON.stringify(grid, null, 1) + '\n');
+    fs.writeFileSync(docsScreenshot, shot);
+    console.log(`wrote ${baselineFile} and ${docsScreenshot}`);
+  }
+  const baseline = JSON.parse(fs.readFileSync(baselineFile, 'utf8'));
+  let differing = 0;
+  grid.forEach((row, r) => [...row].forEach((cell, c) => (differing += cell === baseline[r][c] ? 0 : 1)));
+  const inked = grid.join('').split('#').length - 1;
+  assert.ok(inked > 60, `${inked} cells hold the drawing`);
+  assert.ok(differing <= 12, `${differing} of 1350 cells differ from the baseline:\n${grid.join('\n')}`);
+});
+
+test('in a light theme the page draws with the light palette', async () => {
+  await page.evaluate('document.body.classList.add("vscode-light"); document.body.style.background = "#ffffff"; toolpathDebug.redrawNow()');
+  const [sx, sy] = await screen(30, 0);
+  assert.ok(await hasColour(sx, sy, hex('#0b5cad')), 'dark blue feed on white');
+  const [bx, by] = await screen(22, 42);
+  assert.ok((await colours(bx, by, 2)).every((c) => near(c, [255, 255, 255], 10)), 'the theme background');
+  await page.evaluate('document.body.classList.remove("vscode-light"); document.body.style.background = ""; toolpathDebug.redrawNow()');
+});
+
+test('after an edit the old drawing stays until the new one is complete', async () => {
+  const preview = JSON.parse(fs.readFileSync(path.join(root, 'test', 'fixtures', 'demo_mill.preview.json'), 'utf8'));
+  // The edit removed the blocks after the label.
+  const edited = { ...preview, moves: preview.moves.filter((move) => move.line < 24) };
+  const loading = page.evaluate(`harness.loadPreview(${JSON.stringify(edited)}, 'demo_mill.mpf', 24, null, 6, 150)`);
+  await until('!toolpathDebug.state.done', 'the update to start');
+  await page.evaluate('toolpathDebug.redrawNow()');
+  const during = await page.evaluate('({ count: toolpathDebug.state.packed.count, status: document.getElementById("status").textContent })');
+  assert.equal(during.count, 23, 'the old drawing is still shown');
+  assert.match(during.status, /updating after the edit/);
+  await loading;
+  await until('toolpathDebug.state.done', 'the update');
+  await page.evaluate('toolpathDebug.redrawNow()');
+  assert.equal(await page.evaluate('toolpathDebug.state.packed.count'), 20);
+  const [ux, uy] = await screen(42.5, 25);
+  assert.ok(!(await hasColour(ux, uy, UNCERTAIN, 3)), 'the removed uncertain move is gone');
+});
+
+test('a million moves draw within a frame budget (figures printed)', async () => {
+  await page.evaluate('harness.loadSynthetic(1000000)');
+  await until('toolpathDebug.state.packed.count === 1000000 && toolpathDebug.state.done', 'a million moves', 60000);
+  const times = await page.evaluate(`(() => {
+    const out = [];
+    for (let i = 0; i < 5; i++) { toolpathDebug.redrawNow(); out.push(toolpathDebug.state.renderMs); }
+    return { times: out, stats: toolpathDebug.state.stats };
+  })()`);
+  const sorted = [...times.times].sort((a, b) => a - b);
+  console.log(`1,000,000 moves in Chromium: median redraw ${sorted[2].toFixed(1)} ms (best ${sorted[0].toFixed(1)}), ${times.stats.drawn} drawn, ${times.stats.thinned} thinned`);
+  assert.equal(times.stats.visited, 1000000, 'the whole spiral is on screen');
+  assert.ok(times.stats.thinned > 0);
+});

@@ -1,0 +1,163 @@
+// A stand-in for the `vscode` module with just what the extension's shell uses (status bar, webview
+// panel, editors, documents, settings), recording what the shell does. Loaded with
+// `node --require out/test/shell/fakeVscode.js`, which makes `require('vscode')` return it.
+
+import Module from 'node:module';
+import * as path from 'node:path';
+
+type Listener<T> = (value: T) => unknown;
+
+export class EventEmitter<T> {
+  private listeners: Listener<T>[] = [];
+  event = (listener: Listener<T>) => {
+    this.listeners.push(listener);
+    return { dispose: () => (this.listeners = this.listeners.filter((l) => l !== listener)) };
+  };
+  fire(value: T): void {
+    for (const listener of [...this.listeners]) listener(value);
+  }
+  dispose(): void {
+    this.listeners = [];
+  }
+}
+
+export const ViewColumn = { One: 1, Two: 2, Beside: -2 };
+export const StatusBarAlignment = { Left: 1, Right: 2 };
+export const TextEditorRevealType = { Default: 0, InCenter: 1, InCenterIfOutsideViewport: 2, AtTop: 3 };
+
+export class Uri {
+  constructor(readonly fsPath: string) {}
+  static file(file: string): Uri {
+    return new Uri(file);
+  }
+  static joinPath(base: Uri, ...parts: string[]): Uri {
+    return new Uri(path.join(base.fsPath, ...parts));
+  }
+  toString(): string {
+    return `file://${this.fsPath}`;
+  }
+}
+
+export class Position {
+  constructor(readonly line: number, readonly character: number) {}
+}
+
+export class Range {
+  constructor(readonly start: Position, readonly end: Position) {}
+}
+
+export class Selection extends Range {
+  constructor(readonly anchor: Position, readonly active: Position) {
+    super(anchor, active);
+  }
+}
+
+export class FakeDocument {
+  readonly uri: Uri;
+  constructor(readonly fileName: string, public lines: string[], readonly languageId = 'sinumerik') {
+    this.uri = Uri.file(fileName);
+  }
+  get lineCount(): number {
+    return this.lines.length;
+  }
+  lineAt(line: number) {
+    return { range: new Range(new Position(line, 0), new Position(line, this.lines[line].length)) };
+  }
+}
+
+export class FakeEditor {
+  selection: Selection = new Selection(new Position(0, 0), new Position(0, 0));
+  revealed: Range[] = [];
+  constructor(readonly document: FakeDocument, readonly viewColumn = ViewColumn.One) {}
+  revealRange(range: Range): void {
+    this.revealed.push(range);
+  }
+}
+
+export class FakeStatusBarItem {
+  text = '';
+  tooltip: string | undefined;
+  name = '';
+  visible = false;
+  show(): void {
+    this.visible = true;
+  }
+  hide(): void {
+    this.visible = false;
+  }
+  dispose(): void {}
+}
+
+export class FakePanel {
+  title: string;
+  readonly toPage: unknown[] = [];
+  readonly fromPage = new EventEmitter<unknown>();
+  readonly disposed = new EventEmitter<void>();
+  readonly webview = {
+    html: '',
+    cspSource: 'vscode-webview:',
+    asWebviewUri: (uri: Uri) => uri,
+    postMessage: async (message: unknown) => {
+      this.toPage.push(message);
+      return true;
+    },
+    onDidReceiveMessage: this.fromPage.event,
+  };
+  onDidDispose = this.disposed.event;
+  constructor(readonly viewType: string, title: string, readonly options: unknown) {
+    this.title = title;
+  }
+  reveal(): void {}
+  dispose(): void {
+    this.disposed.fire();
+  }
+}
+
+export const recorded = {
+  panels: [] as FakePanel[],
+  statusItems: [] as FakeStatusBarItem[],
+  information: [] as string[],
+  shownDocuments: [] as FakeDocument[],
+  settings: {} as Record<string, unknown>,
+  activeEditorChanged: new EventEmitter<FakeEditor | undefined>(),
+  selectionChanged: new EventEmitter<{ textEditor: FakeEditor; selections: Selection[] }>(),
+  documentChanged: new EventEmitter<{ document: FakeDocument }>(),
+};
+
+export const window = {
+  activeTextEditor: undefined as FakeEditor | undefined,
+  visibleTextEditors: [] as FakeEditor[],
+  createWebviewPanel(viewType: string, title: string, _column: unknown, options: unknown) {
+    const panel = new FakePanel(viewType, title, options);
+    recorded.panels.push(panel);
+    return panel;
+  },
+  createStatusBarItem() {
+    const item = new FakeStatusBarItem();
+    recorded.statusItems.push(item);
+    return item;
+  },
+  async showTextDocument(document: FakeDocument) {
+    recorded.shownDocuments.push(document);
+    return window.visibleTextEditors.find((editor) => editor.document === document) ?? new FakeEditor(document);
+  },
+  async showInformationMessage(message: string) {
+    recorded.information.push(message);
+    return undefined;
+  },
+  onDidChangeActiveTextEditor: recorded.activeEditorChanged.event,
+  onDidChangeTextEditorSelection: recorded.selectionChanged.event,
+};
+
+export const workspace = {
+  onDidChangeTextDocument: recorded.documentChanged.event,
+  getConfiguration(section: string) {
+    return { get: (key: string) => recorded.settings[`${section}.${key}`] };
+  },
+};
+
+// `require('vscode')` anywhere in the process gives this module.
+const resolve = (Module as unknown as { _resolveFilename: (request: string, ...rest: unknown[]) => string })._resolveFilename;
+(Module as unknown as { _resolveFilename: unknown })._resolveFilename = function (request: string, ...rest: unknown[]) {
+  return request === 'vscode' ? __filename : resolve.call(this, request, ...rest);
+};

@@ -1,0 +1,122 @@
+// The extension's VS Code shell with a fake `vscode` module: the toolpath panel (loading through the
+// server handle, following the cursor and edits, revealing a clicked line) and the status bar.
+
+import assert from 'node:assert/strict';
+import { test } from 'node:test';
+import * as vscode from 'vscode';
+import type { ToPage } from '../../src/core/messages';
+import { ModalStatusBar } from '../../src/vscode/statusBar';
+import { ToolpathPanel } from '../../src/vscode/toolpathPanel';
+import type { RequestSender, ServerHandle } from '../../src/vscode/serverHandle';
+import { readFixture } from '../unit/fixtures';
+import { FakeDocument, FakeEditor, Position, recorded, Selection, EventEmitter, window } from './fakeVscode';
+
+const fake = vscode as unknown as { window: typeof window };
+
+function fakeServer(answer: (method: string, params: unknown) => unknown): ServerHandle & { requests: [string, unknown][] } {
+  const requests: [string, unknown][] = [];
+  const client: RequestSender = {
+    sendRequest: async (method, params) => {
+      requests.push([method, params]);
+      const value = answer(method, params);
+      if (value instanceof Error) throw value;
+      return value;
+    },
+  };
+  return { client, onDidChangeClient: new EventEmitter<RequestSender | undefined>().event, requests };
+}
+
+const wait = (ms: number) => new Promise((resolve) => setTimeout(resolve, ms));
+const demo = readFixture('demo_mill.preview.json') as { moves: { line: number }[] };
+const context = { extensionPath: '/ext' } as unknown as vscode.ExtensionContext;
+
+test('the toolpath panel loads the program, follows the cursor and edits, and reveals a clicked line', async () => {
+  const document = new FakeDocument('/work/demo_mill.mpf', new Array(28).fill('N10 G1 X1'));
+  const editor = new FakeEditor(document);
+  editor.selection = new Selection(new Position(7, 3), new Position(7, 3));
+  fake.window.activeTextEditor = editor;
+  fake.window.visibleTextEditors = [editor];
+  const server = fakeServer((method, params) => {
+    if (method === 'sinumerik/modalState') return { motion: 'G3', plane: 'G17', units: 'G71', distance: 'G90', diameter: null };
+    const { startLine, endLine } = (params as { arguments: { startLine: number; endLine: number }[] }).arguments[0];
+    return { ...demo, moves: demo.moves.filter((m) => m.line - 1 >= startLine && m.line - 1 <= endLine) };
+  });
+  ToolpathPanel.show(context, server);
+  const panel = recorded.panels[0];
+  assert.equal(panel.title, 'Toolpath: demo_mill.mpf');
+  assert.match(panel.webview.html, /<script nonce="[0-9a-f]{32}" src="file:\/\/\/ext\/dist\/webview\.js"><\/script>/);
+  assert.match(panel.webview.html, /script-src 'nonce-[0-9a-f]{32}'/);
+  assert.equal(panel.toPage.length, 0, 'nothing is sent before the page is ready');
+
+  panel.fromPage.fire({ type: 'ready' });
+  await wait(50);
+  const messages = panel.toPage as ToPage[];
+  assert.deepEqual(messages.map((m) => m.type), ['reset', 'append', 'done', 'cursor']);
+  assert.deepEqual(messages[0], { type: 'reset', generation: 1, title: 'demo_mill.mpf', units: 'mm', plane: 'G17' });
+  assert.equal(messages[1].type === 'append' && messages[1].packed.count, 23);
+  assert.deepEqual(messages[3], { type: 'cursor', line: 8 });
+  const preview = server.requests.find(([method]) => method === 'workspace/executeCommand')!;
+  assert.deepEqual(preview[1], { command: 'sinumerik.endpointPreview', arguments: [{ uri: 'file:///work/demo_mill.mpf', startLine: 0, endLine: 28 }] });
+
+  recorded.selectionChanged.fire({ textEditor: editor, selections: [new Selection(new Position(10, 0), new Position(10, 0))] });
+  assert.deepEqual(panel.toPage[panel.toPage.length - 1], { type: 'cursor', line: 11 });
+
+  panel.fromPage.fire({ type: 'reveal', line: 11 });
+  await wait(10);
+  assert.equal(recorded.shownDocuments[0], document);
+  assert.deepEqual([editor.selection.start.line, editor.selection.start.character, editor.selection.end.line, editor.selection.end.character], [10, 0, 10, 9]);
+  assert.equal(editor.revealed.length, 1);
+
+  const before = panel.toPage.length;
+  recorded.documentChanged.fire({ document });
+  recorded.documentChanged.fire({ document });
+  await wait(100);
+  assert.equal(panel.toPage.length, before, 'edits are waited for');
+  await wait(500);
+  const resets = (panel.toPage.slice(before) as ToPage[]).filter((m) => m.type === 'reset');
+  assert.equal(resets.length, 1, 'two quick edits give one reload');
+  assert.equal(resets[0].type === 'reset' && resets[0].generation, 2);
+
+  recorded.settings['sinumerik.toolpath.followEdits'] = false;
+  const quiet = panel.toPage.length;
+  recorded.documentChanged.fire({ document });
+  await wait(500);
+  assert.equal(panel.toPage.length, quiet, 'followEdits = false stops redrawing on edits');
+  delete recorded.settings['sinumerik.toolpath.followEdits'];
+  panel.dispose();
+});
+
+test('the panel asks for a SINUMERIK program when another file is active', () => {
+  const other = new FakeEditor(new FakeDocument('/work/notes.txt', ['x'], 'plaintext'));
+  fake.window.activeTextEditor = other;
+  const panels = recorded.panels.length;
+  ToolpathPanel.show(context, fakeServer(() => null));
+  assert.equal(recorded.panels.length, panels);
+  assert.match(recorded.information[recorded.information.length - 1], /Open a SINUMERIK program/);
+});
+
+test('the status bar shows the modal state at the cursor and hides when the server cannot say', async () => {
+  const document = new FakeDocument('/work/a.mpf', ['G90 G71 G17 G1 X1 F100', 'X2']);
+  const editor = new FakeEditor(document);
+  editor.selection = new Selection(new Position(1, 0), new Position(1, 0));
+  fake.window.activeTextEditor = editor;
+  let fail = false;
+  const server = fakeServer((method) => (fail ? Object.assign(new Error('no such method'), { code: -32601 }) : method === 'sinumerik/modalState'
+    ? { motion: 'G1', plane: 'G17', units: 'G71', distance: 'G90', diameter: null } : null));
+  const bar = new ModalStatusBar(server);
+  await wait(200);
+  const item = recorded.statusItems[recorded.statusItems.length - 1];
+  assert.equal(item.text, 'G90 G71 G17 G1');
+  assert.ok(item.visible);
+  assert.deepEqual(server.requests[server.requests.length - 1], ['sinumerik/modalState', { uri: 'file:///work/a.mpf', line: 1 }]);
+  fail = true;
+  recorded.selectionChanged.fire({ textEditor: editor, selections: [editor.selection] });
+  await wait(200);
+  assert.equal(item.visible, false);
+  fake.window.activeTextEditor = new FakeEditor(new FakeDocument('/work/b.txt', ['x'], 'plaintext'));
+  fail = false;
+  recorded.activeEditorChanged.fire(fake.window.activeTextEditor);
+  await wait(200);
+  assert.equal(item.visible, false, 'hidden for other languages');
+  bar.dispose();
+});

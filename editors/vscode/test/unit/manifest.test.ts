@@ -1,0 +1,64 @@
+import assert from 'node:assert/strict';
+import * as fs from 'node:fs';
+import * as path from 'node:path';
+import { test } from 'node:test';
+import { serverSettings } from '../../src/core/settings';
+import { EXTENSION_ROOT } from './fixtures';
+
+const read = (file: string) => JSON.parse(fs.readFileSync(path.join(EXTENSION_ROOT, file), 'utf8'));
+const manifest = read('package.json');
+
+test('the language, its files and its grammar are contributed consistently', () => {
+  const [language] = manifest.contributes.languages;
+  assert.equal(language.id, 'sinumerik');
+  assert.deepEqual(language.extensions, ['.mpf', '.spf', '.MPF', '.SPF']);
+  const [grammar] = manifest.contributes.grammars;
+  assert.equal(grammar.language, 'sinumerik');
+  assert.equal(read(grammar.path).scopeName, grammar.scopeName);
+  for (const file of [manifest.icon, language.icon.light, language.configuration]) {
+    assert.ok(fs.existsSync(path.join(EXTENSION_ROOT, file)), `${file} exists`);
+  }
+});
+
+test('every contributed command is registered by the extension, and the other way round', () => {
+  const source = fs.readFileSync(path.join(EXTENSION_ROOT, 'src', 'extension.ts'), 'utf8');
+  const registered = [...source.matchAll(/registerCommand\('([^']+)'/g)].map((m) => m[1]).sort();
+  const contributed = manifest.contributes.commands.map((c: { command: string }) => c.command).sort();
+  assert.deepEqual(registered, contributed);
+  assert.ok(contributed.includes('sinumerik.showToolpath'));
+  assert.equal(manifest.contributes.commands.find((c: { command: string }) => c.command === 'sinumerik.showToolpath').title, 'Show Toolpath');
+});
+
+test('the settings the server receives are the ones VS Code offers, with the same values', () => {
+  const properties = manifest.contributes.configuration.properties;
+  for (const key of ['inlayHints', 'machineKind', 'trace.server']) {
+    const property = properties[`sinumerik.${key}`];
+    assert.ok(property, key);
+    for (const value of property.enum) {
+      const settings = serverSettings((k) => (k === key ? value : undefined));
+      const read = key === 'trace.server' ? settings.trace.server : settings[key as 'inlayHints' | 'machineKind'];
+      assert.equal(read, value, `${key} = ${value} reaches the server`);
+    }
+    const defaults = serverSettings(() => undefined);
+    const fallback = key === 'trace.server' ? defaults.trace.server : defaults[key as 'inlayHints' | 'machineKind'];
+    assert.equal(property.default, fallback, `${key}: same default`);
+  }
+  assert.ok(properties['sinumerik.configFile'] && properties['sinumerik.server.path']);
+});
+
+test('comments, folding and indentation follow the control structures', () => {
+  const config = read('language-configuration.json');
+  assert.equal(config.comments.lineComment, ';');
+  const start = new RegExp(config.folding.markers.start);
+  const end = new RegExp(config.folding.markers.end);
+  const indent = new RegExp(config.indentationRules.increaseIndentPattern);
+  const dedent = new RegExp(config.indentationRules.decreaseIndentPattern);
+  const opens = ['IF R1 > 0', 'N10 if (R1==1) AND (R2==2)', 'WHILE $AA_IM[X] < 10', '  FOR R1=1 TO 10', 'REPEAT', 'N20 LOOP ; forever', '/1 N30 IF R2'];
+  const notOpens = ['IF R1 > 0 GOTOF END_LABEL', 'REPEAT START END P=3', 'IFR1=3', 'N10 G0 X10', '; IF in a comment', 'CASE R1 OF 1 GOTOF A DEFAULT GOTOF B'];
+  const closes = ['ENDIF', 'N40 endwhile', '  ENDFOR', 'UNTIL R1 > 5', 'ENDLOOP ; done'];
+  for (const line of opens) assert.ok(start.test(line) && indent.test(line), `opens: ${line}`);
+  for (const line of notOpens) assert.ok(!start.test(line) && !indent.test(line), `does not open: ${line}`);
+  for (const line of closes) assert.ok(end.test(line) && dedent.test(line), `closes: ${line}`);
+  assert.ok(indent.test('ELSE') && dedent.test('N50 ELSE'), 'ELSE closes and opens');
+  assert.ok(!end.test('ENDIFX=1') && !end.test('N10 X10'));
+});

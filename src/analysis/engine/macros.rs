@@ -1,0 +1,87 @@
+//! Macros defined with `DEFINE name AS body` in the program (reference §8.10): a block that uses one is
+//! interpreted as the control does, with the name replaced by its body, e.g. `N30 RETRACT` as
+//! `N30 G0 G53 Z0 D0`. Macros from definition files the analysis has not seen stay calls.
+
+use super::Engine;
+use crate::diagnostics::{Diagnostic, Span};
+use crate::syntax::ast::{Block, CallKind, Statement};
+
+/// How deep macros may expand into other macros before the block is left as a call.
+const MAX_EXPANSION_DEPTH: u8 = 8;
+
+impl Engine<'_> {
+    /// Remembers the macros this block defines.
+    pub(super) fn record_macro_definitions(&mut self, line: &str, block: &Block) {
+        for statement in &block.statements {
+            if let Statement::MacroDefinition {
+                name: Some(name),
+                body,
+                ..
+            } = statement
+            {
+                let upper = line[name.start()..name.end()].to_ascii_uppercase();
+                let body = line[body.start()..body.end()].trim().to_string();
+                self.memory.macros.retain(|(known, _)| *known != upper);
+                self.memory.macros.push((upper, body));
+            }
+        }
+    }
+
+    /// The block's text with its first use of a known macro replaced by the macro's body, and the span
+    /// of that use; `None` when the block uses no macro (or expansion is nested too deeply).
+    pub(super) fn expand_macro(&self, line: &str, block: &Block) -> Option<(String, Span)> {
+        if self.memory.macros.is_empty() || self.expansion_depth >= MAX_EXPANSION_DEPTH {
+            return None;
+        }
+        block
+            .interpreted_statements()
+            .iter()
+            .find_map(|statement| match statement {
+                Statement::Call {
+                    kind: CallKind::Named,
+                    name: Some(name),
+                    args,
+                    span,
+                } if args.is_empty() => {
+                    let written = &line[name.start()..name.end()];
+                    let (_, body) = self
+                        .memory
+                        .macros
+                        .iter()
+                        .find(|(known, _)| known.eq_ignore_ascii_case(written))?;
+                    let expanded =
+                        format!("{} {body} {}", &line[..span.start()], &line[span.end()..]);
+                    Some((expanded, *span))
+                }
+                _ => None,
+            })
+    }
+
+    /// Interprets the expanded block in place of the written one. Analysis findings of the expansion
+    /// are placed on the macro's use. Syntax findings inside the body are not reported: a body is text
+    /// until it is used, and its findings would have no place in the written line.
+    pub(super) fn step_expanded(
+        &mut self,
+        expanded: &str,
+        used_at: Span,
+        diagnostics: &mut Vec<Diagnostic>,
+    ) -> bool {
+        let mut context = crate::syntax::context::SyntaxContext::new(self.config);
+        for (name, _) in &self.memory.macros {
+            context.add_macro(name);
+        }
+        let mut parser = crate::syntax::parser::LineParser::new();
+        let mut block = Block::default();
+        let mut syntax_findings = Vec::new();
+        parser.parse(expanded, &context, &mut block, &mut syntax_findings);
+        let mut findings = Vec::new();
+        self.expansion_depth += 1;
+        let moved = self.step(expanded, &block, &mut findings);
+        self.expansion_depth -= 1;
+        diagnostics.extend(findings.into_iter().map(|mut finding| {
+            finding.span = used_at;
+            finding
+        }));
+        moved
+    }
+}

@@ -1,0 +1,346 @@
+//! The incremental analysis of a document must equal a from-scratch analysis of the same text after
+//! any sequence of edits: diagnostics, moves and block reports. Random edits (a small deterministic
+//! generator, so a failure names its seed) replace line ranges with lines drawn from a pool of blocks
+//! that change the modal state, open and close structures, define macros and move axes.
+
+use sinumerik_lsp::analysis::document::{DocumentAnalysis, TextLines, CHECKPOINT_INTERVAL};
+use sinumerik_lsp::analysis::{diagnose_program, ProgramKind};
+use sinumerik_lsp::config::MachineConfig;
+use sinumerik_lsp::diagnostics::LineDiagnostic;
+use std::sync::Arc;
+
+#[path = "support/generated.rs"]
+mod generated;
+
+/// A xorshift generator: deterministic, no dependency.
+struct Random(u64);
+
+impl Random {
+    fn next(&mut self) -> u64 {
+        self.0 ^= self.0 << 13;
+        self.0 ^= self.0 >> 7;
+        self.0 ^= self.0 << 17;
+        self.0
+    }
+
+    fn below(&mut self, bound: usize) -> usize {
+        (self.next() % bound.max(1) as u64) as usize
+    }
+}
+
+/// Blocks an edit may insert: every kind of state change the analysis follows, and mistakes.
+const POOL: &[&str] = &[
+    "N10 G90 G0 X10 Y20 Z30",
+    "G91",
+    "G90",
+    "X=IC(5) Y=AC(2)",
+    "Z=IC(-32)",
+    "G1 X1 F100",
+    "G1 X2",
+    "G2 X10 Y0 I5 J0",
+    "G3 X0 Y0 CR=5",
+    "G70",
+    "G71",
+    "G700 F10",
+    "G18 DIAMON",
+    "G17 DIAMOF",
+    "R1=5",
+    "R2=R1*2 X=R2",
+    "IF R1==5 GOTOF END1",
+    "END1:",
+    "WHILE R1>0",
+    "ENDWHILE",
+    "IF R1>2",
+    "ELSE",
+    "ENDIF",
+    "TRANS X10",
+    "AROT RPL=30",
+    "G111 X0 Y0",
+    "G1 AP=45 RP=10",
+    "L100",
+    "M6",
+    "Z=AC17",
+    "X=IC(",
+    "; a comment",
+    "",
+    "   ",
+    "DEF REAL DEPTH",
+    "DEPTH=-5",
+    "G1 Z=DEPTH",
+    "F0",
+    "R3=1/0",
+    "X1 X2",
+    "G54",
+    "G500",
+    "G53 X0",
+    "SUPA Z0",
+    "G1 Z=IC(1)",
+    "X0.5 Y-0.25",
+    "G91 X0.125",
+    "CT X5 Y5",
+    "CIP X1 Y1 I1=0.5 J1=0.5",
+    "G2 X2 Y0 AR=90",
+    "A=DC(10)",
+    "$P_UIFR[1]=CTRANS(X,200)",
+];
+
+/// Rare blocks that change how the whole document reads.
+const RARE: &[&str] = &["DEFINE RETRACT AS G0 Z100", "RETRACT", "PROC SUB1"];
+
+fn random_line(random: &mut Random) -> String {
+    if random.below(60) == 0 {
+        return RARE[random.below(RARE.len())].to_string();
+    }
+    POOL[random.below(POOL.len())].to_string()
+}
+
+fn joined(lines: &[String]) -> String {
+    let mut text = String::new();
+    for line in lines {
+        text.push_str(line);
+        text.push('\n');
+    }
+    text
+}
+
+/// The debug form of a value with every decimal number rounded to six places: an edit may carry a
+/// difference of positions across blocks instead of adding the increments again, which gives the same
+/// positions up to the last bits of a double.
+fn rounded_debug(value: &impl std::fmt::Debug) -> String {
+    let text = format!("{value:?}");
+    let mut out = String::with_capacity(text.len());
+    let bytes = text.as_bytes();
+    let mut index = 0;
+    while index < bytes.len() {
+        let starts_number = bytes[index].is_ascii_digit()
+            && (index == 0
+                || !(bytes[index - 1].is_ascii_alphanumeric() || bytes[index - 1] == b'_'));
+        if !starts_number {
+            out.push(bytes[index] as char);
+            index += 1;
+            continue;
+        }
+        let mut end = index;
+        while end < bytes.len()
+            && (bytes[end].is_ascii_digit() || matches!(bytes[end], b'.' | b'e' | b'-'))
+        {
+            if bytes[end] == b'-' && bytes[end - 1] != b'e' {
+                break;
+            }
+            end += 1;
+        }
+        let literal = &text[index..end];
+        match literal.parse::<f64>() {
+            Ok(number) if literal.contains('.') || literal.contains('e') => {
+                let rounded = (number * 1e6).round() / 1e6;
+                out.push_str(&format!("{}", if rounded == 0.0 { 0.0 } else { rounded }))
+            }
+            _ => out.push_str(literal),
+        }
+        index = end;
+    }
+    out
+}
+
+/// Fails with the first difference of two diagnostic lists, not with both lists in full.
+fn assert_same_diagnostics(actual: &[LineDiagnostic], expected: &[LineDiagnostic], context: &str) {
+    let first_difference = actual
+        .iter()
+        .zip(expected)
+        .position(|(actual, expected)| actual != expected);
+    match first_difference {
+        Some(index) => panic!(
+            "{context}: diagnostic {index} differs:\n  incremental {:?}\n  expected    {:?}",
+            actual[index], expected[index]
+        ),
+        None => assert_eq!(
+            actual.len(),
+            expected.len(),
+            "{context}: different counts; extra: {:?}",
+            if actual.len() > expected.len() {
+                &actual[expected.len()..]
+            } else {
+                &expected[actual.len()..]
+            }
+        ),
+    }
+}
+
+/// Applies `steps` random edits to `lines` and checks the incremental analysis after each.
+fn check_random_edits(seed: u64, mut lines: Vec<String>, steps: usize, config: MachineConfig) {
+    let config = Arc::new(config);
+    let mut random = Random(seed);
+    let text = joined(&lines);
+    let mut analysis =
+        DocumentAnalysis::new(&TextLines::new(&text), config.clone(), ProgramKind::Main);
+    for step in 0..steps {
+        let first = random.below(lines.len() + 1);
+        let removed = random.below((lines.len() - first).min(4) + 1);
+        let inserted_count = if random.below(8) == 0 {
+            random.below(40)
+        } else {
+            random.below(3)
+        };
+        let inserted: Vec<String> = (0..inserted_count)
+            .map(|_| random_line(&mut random))
+            .collect();
+        lines.splice(first..first + removed, inserted);
+        let text = joined(&lines);
+        let source = TextLines::new(&text);
+        analysis.update(&source, first, removed, inserted_count);
+        let fresh = DocumentAnalysis::new(&source, config.clone(), ProgramKind::Main);
+        assert_same_diagnostics(
+            analysis.diagnostics(),
+            fresh.diagnostics(),
+            &format!("seed {seed}, step {step}: after replacing {removed} lines at {first} by {inserted_count}"),
+        );
+        if step % 10 == 0 {
+            assert_same_diagnostics(
+                analysis.diagnostics(),
+                &diagnose_program(&text, &config, ProgramKind::Main),
+                &format!("seed {seed}, step {step}: the document and the checker"),
+            );
+            let line = random.below(lines.len() + 1);
+            assert_eq!(
+                rounded_debug(&analysis.block_report(&source, line)),
+                rounded_debug(&fresh.block_report(&source, line)),
+                "seed {seed}, step {step}: block report of line {line}"
+            );
+            let range = line..(line + 700).min(lines.len());
+            let incremental_moves = analysis.moves(&source, range.clone());
+            let fresh_moves = fresh.moves(&source, range);
+            assert_eq!(
+                incremental_moves.len(),
+                fresh_moves.len(),
+                "seed {seed}, step {step}: moves"
+            );
+            for (incremental, fresh) in incremental_moves.iter().zip(&fresh_moves) {
+                assert_eq!(
+                    rounded_debug(incremental),
+                    rounded_debug(fresh),
+                    "seed {seed}, step {step}: move of line {}",
+                    fresh.line
+                );
+            }
+        }
+    }
+}
+
+#[test]
+fn random_edits_of_a_small_program_match_a_fresh_analysis() {
+    for seed in 1..=20u64 {
+        let mut random = Random(seed * 7919);
+        let lines: Vec<String> = (0..60).map(|_| random_line(&mut random)).collect();
+        check_random_edits(seed, lines, 150, MachineConfig::mill());
+    }
+}
+
+#[test]
+fn random_edits_across_checkpoints_match_a_fresh_analysis() {
+    // Programs longer than a few checkpoint intervals, so that passes stop early at checkpoints.
+    let mut random = Random(42);
+    let lines: Vec<String> = (0..3000).map(|_| random_line(&mut random)).collect();
+    check_random_edits(42, lines, 120, MachineConfig::mill());
+}
+
+#[test]
+fn random_edits_of_generated_programs_match_a_fresh_analysis() {
+    for (style, config) in [
+        ("inc", MachineConfig::mill()),
+        ("turning", MachineConfig::turn()),
+        ("mixed", MachineConfig::mill()),
+    ] {
+        let Some(text) = generated::generate(style, 4000) else {
+            eprintln!("skipped: ../shared/bench/gen_program.py is not available");
+            return;
+        };
+        let lines: Vec<String> = text.lines().map(str::to_string).collect();
+        check_random_edits(style.len() as u64, lines, 60, config);
+    }
+}
+
+#[test]
+fn an_edit_far_from_the_end_stops_at_a_checkpoint() {
+    // A comment edit leaves the state unchanged: the diagnostics of the rest are kept, and they are
+    // still the right ones (the syntax error on the last line stays where it is).
+    let config = Arc::new(MachineConfig::mill());
+    let mut lines: Vec<String> = (0..5000)
+        .map(|index| format!("N{index} G1 X{index} F100"))
+        .collect();
+    lines.push("Z=AC17".to_string());
+    let text = joined(&lines);
+    let mut analysis =
+        DocumentAnalysis::new(&TextLines::new(&text), config.clone(), ProgramKind::Main);
+    let codes: Vec<&str> = analysis
+        .diagnostics()
+        .iter()
+        .map(|item| item.diagnostic.code.as_str())
+        .collect();
+    assert_eq!(codes, ["S101", "A202"]);
+    lines.insert(10, "; inserted".to_string());
+    let text = joined(&lines);
+    analysis.update(&TextLines::new(&text), 10, 0, 1);
+    assert_same_diagnostics(
+        analysis.diagnostics(),
+        &diagnose_program(&text, &config, ProgramKind::Main),
+        "after the comment",
+    );
+    assert_eq!(analysis.diagnostics()[0].line, 5001);
+    assert!(
+        analysis.lines_read_by_last_update() <= 2 * CHECKPOINT_INTERVAL,
+        "the edit re-read {} lines",
+        analysis.lines_read_by_last_update()
+    );
+}
+
+#[test]
+fn a_changed_increment_is_carried_to_the_end_without_reading_it_again() {
+    // Every later position moves by the same amount, and every later block reads X incrementally:
+    // the edit re-reads one interval, and the result is that of a fresh analysis.
+    let config = Arc::new(MachineConfig::mill());
+    let mut lines = vec!["G0 X0 Y0 Z0".to_string(), "G91 G1 F100".to_string()];
+    for index in 0..6000 {
+        lines.push(match index % 50 {
+            0 => "G2 X2 Y0 I1 J0".to_string(),
+            7 => "Y=AC(3) X1".to_string(),
+            13 => "X1 Y1 Z=IC(1)".to_string(),
+            _ => format!("X0.{} Y-0.1", index % 7),
+        });
+    }
+    lines.push("G90 G0 Z100".to_string());
+    let text = joined(&lines);
+    let mut analysis =
+        DocumentAnalysis::new(&TextLines::new(&text), config.clone(), ProgramKind::Main);
+    lines[100] = "X0.5 Y-0.1 Z0.25".to_string();
+    let text = joined(&lines);
+    let source = TextLines::new(&text);
+    analysis.update(&source, 100, 1, 1);
+    assert!(
+        analysis.lines_read_by_last_update() <= 2 * CHECKPOINT_INTERVAL,
+        "the edit re-read {} lines",
+        analysis.lines_read_by_last_update()
+    );
+    let fresh = DocumentAnalysis::new(&source, config.clone(), ProgramKind::Main);
+    assert_same_diagnostics(
+        analysis.diagnostics(),
+        fresh.diagnostics(),
+        "after the edit",
+    );
+    for line in [99, 100, 101, 3000, 6001, 6002] {
+        assert_eq!(
+            rounded_debug(&analysis.block_report(&source, line)),
+            rounded_debug(&fresh.block_report(&source, line)),
+            "line {line}"
+        );
+    }
+    // A second edit after the first starts from the moved checkpoints.
+    lines[5000] = "X0.7 Y-0.1".to_string();
+    let text = joined(&lines);
+    let source = TextLines::new(&text);
+    analysis.update(&source, 5000, 1, 1);
+    let fresh = DocumentAnalysis::new(&source, config, ProgramKind::Main);
+    assert_eq!(
+        rounded_debug(&analysis.block_report(&source, 6001)),
+        rounded_debug(&fresh.block_report(&source, 6001))
+    );
+}
