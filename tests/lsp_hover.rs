@@ -23,6 +23,7 @@ const HOVERS: &[Case] = &[
     Case { config: None, file: "inch_inc.mpf", program: "N10 G90 G0 X10 Z0\nN20 G70\nN30 G91 X$01", expected: &["X = 10.000 + 1.000 in (25.400 mm) = **35.400** mm (G91: incremental)"] },
     Case { config: Some(TURN), file: "diameter.mpf", program: "N10 G90 G0 X4$00 Z5", expected: &["X = **40.000** mm (G90: absolute)", "Diameter 40.000 mm, radius 20.000 mm"] },
     Case { config: Some(TURN), file: "diameter_ic.mpf", program: "N10 G90 G0 X40 Z5\nN20 X=I$0C(10)", expected: &["X = 40.000 + 10.000 = **50.000** mm (IC: incremental", "radius 25.000 mm"] },
+    Case { config: Some(TURN), file: "dac.mpf", program: "N10 DIAMOF G90 G0 X10 Z5\nN20 X=DA$0C(40)", expected: &["X = **20.000** mm", "The value is read as a diameter; the position is shown as a radius."] },
     Case { config: None, file: "frame.mpf", program: "N10 G90 G0 X0 Z0\nN20 TRANS X10\nN30 X$05", expected: &["X = **5.000** mm (G90: absolute)", "After the programmable frame (machine coordinates): X = **15.000** mm"] },
     Case { config: None, file: "inherited.spf", program: "N10 X=I$0C(5)", expected: &["X = **unknown**"] },
     Case { config: None, file: "plane.mpf", program: "N10 G1$07 X0", expected: &["**G17** — Working plane X/Y", "Group 6 (working plane), modal", "Before this block: **G17**"] },

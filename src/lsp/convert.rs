@@ -182,25 +182,30 @@ pub fn diagnostics_json<'a>(
     array
 }
 
-/// The body of a `textDocument/publishDiagnostics` notification with the array of [`diagnostics_json`].
-pub fn publish_diagnostics_body(
+/// The whole `textDocument/publishDiagnostics` message, header included, with the array of
+/// [`diagnostics_json`], written into one buffer: the array is megabytes for a large program, and is
+/// copied once.
+pub fn publish_diagnostics_message(
     uri: &ls_types::Uri,
     version: Option<i32>,
     diagnostics_array: &[u8],
 ) -> Vec<u8> {
-    use std::io::Write;
-    let mut body = Vec::with_capacity(160 + diagnostics_array.len());
-    body.extend_from_slice(
-        br#"{"jsonrpc":"2.0","method":"textDocument/publishDiagnostics","params":{"uri":"#,
-    );
-    let _ = serde_json::to_writer(&mut body, uri.as_str());
-    body.extend_from_slice(br#","diagnostics":"#);
-    body.extend_from_slice(diagnostics_array);
-    if let Some(version) = version {
-        let _ = write!(body, r#","version":{version}"#);
-    }
-    body.extend_from_slice(b"}}");
-    body
+    let mut prefix =
+        br#"{"jsonrpc":"2.0","method":"textDocument/publishDiagnostics","params":{"uri":"#.to_vec();
+    let _ = serde_json::to_writer(&mut prefix, uri.as_str());
+    prefix.extend_from_slice(br#","diagnostics":"#);
+    let suffix = match version {
+        Some(version) => format!(r#","version":{version}}}}}"#),
+        None => "}}".to_string(),
+    };
+    let length = prefix.len() + diagnostics_array.len() + suffix.len();
+    let header = format!("Content-Length: {length}\r\n\r\n");
+    let mut message = Vec::with_capacity(header.len() + length);
+    message.extend_from_slice(header.as_bytes());
+    message.extend_from_slice(&prefix);
+    message.extend_from_slice(diagnostics_array);
+    message.extend_from_slice(suffix.as_bytes());
+    message
 }
 
 /// One diagnostic, with `line` the text of its line.
@@ -307,8 +312,16 @@ mod tests {
                 false,
                 encoding,
             );
-            let body = publish_diagnostics_body(&uri, Some(7), &array);
-            let written: serde_json::Value = serde_json::from_slice(&body).unwrap();
+            let message = publish_diagnostics_message(&uri, Some(7), &array);
+            let header_end = message
+                .windows(4)
+                .position(|window| window == b"\r\n\r\n")
+                .unwrap()
+                + 4;
+            let body = &message[header_end..];
+            let header = std::str::from_utf8(&message[..header_end]).unwrap();
+            assert_eq!(header, format!("Content-Length: {}\r\n\r\n", body.len()));
+            let written: serde_json::Value = serde_json::from_slice(body).unwrap();
             let expected = ls_types::PublishDiagnosticsParams {
                 uri: uri.clone(),
                 diagnostics: diagnostics

@@ -9,7 +9,7 @@ use crate::analysis::document::{DocumentAnalysis, LineSource};
 use crate::analysis::ProgramKind;
 use crate::config::MachineConfig;
 use crate::diagnostics::LineDiagnostic;
-use crate::lsp::convert::{diagnostics_json, publish_diagnostics_body, PositionEncoding};
+use crate::lsp::convert::{diagnostics_json, publish_diagnostics_message, PositionEncoding};
 use crate::lsp::log;
 use crate::lsp::outgoing::{Outgoing, OutgoingSender};
 use crate::lsp::text_document::{
@@ -279,9 +279,10 @@ impl OpenDocument {
                 let analysed_in = started.elapsed();
                 slot.as_ref().map(|analysed| {
                     let array = self.diagnostics_array(analysed, context.encoding);
-                    let body = publish_diagnostics_body(&self.uri, Some(analysed.version), &array);
+                    let message =
+                        publish_diagnostics_message(&self.uri, Some(analysed.version), &array);
                     let count = analysed.analysis.diagnostics().len();
-                    (analysed.revision, body, count, analysed_in)
+                    (analysed.revision, message, count, analysed_in)
                 })
             }));
             if let Ok(Some((_, _, count, analysed_in))) = &result {
@@ -297,7 +298,7 @@ impl OpenDocument {
                 );
             }
             match result {
-                Ok(Some((revision, body, _, _))) => {
+                Ok(Some((revision, message, _, _))) => {
                     let mut text = lock(&self.text);
                     if text.closed {
                         text.worker_running = false;
@@ -305,7 +306,7 @@ impl OpenDocument {
                     }
                     if text.revision == revision {
                         // Sent under the lock: a newer revision's publication cannot overtake it.
-                        context.outgoing.send_body(body);
+                        context.outgoing.send_message(message);
                         text.worker_running = false;
                         return;
                     }

@@ -168,8 +168,9 @@ fn resolution_from_movement(
             && movement.is_some_and(|movement| movement.transverse_as_diameter),
         shown_as_diameter: axis_kind == Some(AxisKind::Transverse)
             && movement.is_some_and(|movement| movement.transverse_as_diameter),
-        // Built from the move alone: the arithmetic is not checked, so it is not spelled out.
-        explained: false,
+        // Built from the move alone; `explain_resolution` spells out a sum only when it checks
+        // against the analysis's end point.
+        explained: true,
         start,
         end,
         machine: movement
@@ -264,7 +265,10 @@ pub fn explain_resolution(
             term(programmed)
         }
     };
+    // A sum is shown only where the analysis says plain arithmetic gives its end point, and where
+    // it does here too.
     let formula = match (resolution.programmed, converted, resolution.start) {
+        _ if !resolution.explained => None,
         (Some(programmed), Some(converted), Some(start))
             if is_incremental(resolution.mode) && same(start + converted, end) =>
         {
@@ -304,16 +308,18 @@ pub fn explain_resolution(
             }
         },
     }
-    if resolution.read_as_diameter {
+    if resolution.shown_as_diameter {
         let _ = write!(
             text,
             "\n\nDiameter {} {unit}, radius {} {unit}",
             fixed(end),
             fixed(end / 2.0)
         );
+    } else if resolution.read_as_diameter {
+        text.push_str("\n\nThe value is read as a diameter; the position is shown as a radius.");
     }
     if let Some(machine) = resolution.machine {
-        let shown_machine = if resolution.read_as_diameter {
+        let shown_machine = if resolution.shown_as_diameter {
             machine * 2.0
         } else {
             machine

@@ -57,7 +57,10 @@ where
 
 /// Runs the server on the process's stdin and stdout; returns the exit code.
 pub fn serve_stdio() -> u8 {
+    // Analyses run in the blocking pool. Few threads keep few allocator arenas holding freed memory
+    // (a 1,000,000-line analysis allocates hundreds of MB); stdin and stdout need one thread each.
     let runtime = match tokio::runtime::Builder::new_multi_thread()
+        .max_blocking_threads(8)
         .enable_all()
         .build()
     {

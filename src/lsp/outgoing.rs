@@ -100,9 +100,9 @@ impl OutgoingSender {
         }
     }
 
-    /// Queues a message whose JSON body is already written.
-    pub fn send_body(&self, body: Vec<u8>) {
-        let _ = self.0.send(Frame::Message(with_header(&body)));
+    /// Queues a message that is already written, header included.
+    pub fn send_message(&self, message: Vec<u8>) {
+        let _ = self.0.send(Frame::Message(message));
     }
 
     /// Logs on stderr and as `window/logMessage`.
