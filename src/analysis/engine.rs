@@ -1626,11 +1626,15 @@ pub(crate) fn configured_axis_index(
         }
         _ => &[],
     };
+    // Compared byte by byte: these names are one to three bytes long, and a call of the library's
+    // memcmp per configured axis and word cost more than the rest of the lookup.
     config.axes.iter().position(|axis| {
         let name = axis.name.as_bytes();
         name.len() == letters.len() + digits.len()
-            && name[..letters.len()].eq_ignore_ascii_case(letters)
-            && &name[letters.len()..] == digits
+            && name
+                .iter()
+                .zip(letters.iter().chain(digits))
+                .all(|(configured, written)| configured.eq_ignore_ascii_case(written))
     })
 }
 
