@@ -486,7 +486,12 @@ impl<'a> Engine<'a> {
                         if functions.frame_or_pole.is_some() || functions.dwell {
                             continue;
                         }
-                        moved = true;
+                        // A word of an axis the machine does not have (reported as S180) moves
+                        // nothing the engine can follow: the block is no move of its own, so no
+                        // finding about its motion is made from it.
+                        if configured_axis_index(self.config, line, word).is_some() {
+                            moved = true;
+                        }
                         self.apply_axis_word(line, block, word, &functions, diagnostics);
                     }
                     AddressKind::Feed if !functions.dwell => {
