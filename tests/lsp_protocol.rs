@@ -636,3 +636,48 @@ async fn the_modal_state_request_gives_the_state_after_a_block() {
         .await;
     assert!(unknown_document.is_err(), "{unknown_document:?}");
 }
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn the_outline_and_the_folding_ranges_follow_the_program() {
+    let mut client = initialized_client().await;
+    let uri = "file:///nonexistent/PART.SPF";
+    let text = "PROC PART\n;=====\n; ROUGHING\n;=====\nN10 T1 M6\nIF R1 == 1\n  G0 X0\nENDIF\nSTART:\nM17\n";
+    client.open(uri, 1, text).await;
+    client.diagnostics(uri, 1).await;
+    let symbols = client
+        .request(
+            "textDocument/documentSymbol",
+            json!({"textDocument": {"uri": uri}}),
+        )
+        .await
+        .expect("an outline");
+    let procedure = &symbols[0];
+    assert_eq!(procedure["name"], "PART", "{symbols}");
+    assert_eq!(procedure["range"]["start"]["line"], 0, "{symbols}");
+    let section = &procedure["children"][0];
+    assert_eq!(section["name"], "ROUGHING", "{symbols}");
+    let names: Vec<&str> = section["children"]
+        .as_array()
+        .expect("the section holds the tool change and the label")
+        .iter()
+        .map(|child| child["name"].as_str().unwrap_or(""))
+        .collect();
+    assert_eq!(names, ["T1 M6", "START"], "{symbols}");
+    let start = &section["children"][1];
+    assert_eq!(start["selectionRange"]["start"]["line"], 8, "{symbols}");
+    let folds = client
+        .request(
+            "textDocument/foldingRange",
+            json!({"textDocument": {"uri": uri}}),
+        )
+        .await
+        .expect("folding ranges");
+    let structure = folds
+        .as_array()
+        .expect("a list")
+        .iter()
+        .find(|fold| fold["kind"] == "region")
+        .expect("the IF folds");
+    assert_eq!(structure["startLine"], 5, "{folds}");
+    assert_eq!(structure["endLine"], 6, "{folds}");
+}

@@ -25,6 +25,7 @@ mod inlay;
 mod log;
 mod numbers;
 mod outgoing;
+mod outline;
 mod server;
 mod settings;
 mod text_document;

@@ -334,6 +334,8 @@ impl LanguageServer for Backend {
                     },
                 )),
                 inlay_hint_provider: Some(OneOf::Left(true)),
+                document_symbol_provider: Some(OneOf::Left(true)),
+                folding_range_provider: Some(FoldingRangeProviderCapability::Simple(true)),
                 execute_command_provider: Some(ExecuteCommandOptions {
                     commands: vec![ENDPOINT_PREVIEW_COMMAND.to_string()],
                     ..ExecuteCommandOptions::default()
@@ -446,6 +448,28 @@ impl LanguageServer for Backend {
             &params.text_document_position_params.text_document.uri,
             move |analysed| hover(analysed, position, encoding),
         )
+        .await
+    }
+
+    async fn document_symbol(
+        &self,
+        params: DocumentSymbolParams,
+    ) -> Result<Option<DocumentSymbolResponse>> {
+        let _timer = HandlerTimer::new("textDocument/documentSymbol", &self.outgoing);
+        let encoding = self.encoding();
+        self.on_analysis(&params.text_document.uri, move |analysed| {
+            Some(DocumentSymbolResponse::Nested(
+                crate::lsp::outline::document_symbols(analysed, encoding),
+            ))
+        })
+        .await
+    }
+
+    async fn folding_range(&self, params: FoldingRangeParams) -> Result<Option<Vec<FoldingRange>>> {
+        let _timer = HandlerTimer::new("textDocument/foldingRange", &self.outgoing);
+        self.on_analysis(&params.text_document.uri, |analysed| {
+            Some(crate::lsp::outline::folding_ranges(analysed))
+        })
         .await
     }
 
