@@ -119,17 +119,6 @@ pub struct FoldingRange {
     pub kind: FoldingKind,
 }
 
-fn closer_of(keyword: StructureKeyword) -> Option<StructureKeyword> {
-    Some(match keyword {
-        StructureKeyword::If => StructureKeyword::EndIf,
-        StructureKeyword::While => StructureKeyword::EndWhile,
-        StructureKeyword::For => StructureKeyword::EndFor,
-        StructureKeyword::Repeat => StructureKeyword::Until,
-        StructureKeyword::Loop => StructureKeyword::EndLoop,
-        _ => return None,
-    })
-}
-
 /// The folding ranges of a document, sorted by start line.
 pub fn folding_ranges(table: &SymbolTable) -> Vec<FoldingRange> {
     let mut out = Vec::new();
@@ -182,12 +171,13 @@ pub fn folding_ranges(table: &SymbolTable) -> Vec<FoldingRange> {
                     );
                 }
             }
-            keyword if closer_of(keyword).is_some() => open.push((keyword, mark.line)),
+            keyword if crate::syntax::structure::closer(keyword).is_some() => {
+                open.push((keyword, mark.line))
+            }
             closing => {
-                if let Some(position) = open
-                    .iter()
-                    .rposition(|(keyword, _)| closer_of(*keyword) == Some(closing))
-                {
+                if let Some(position) = open.iter().rposition(|(keyword, _)| {
+                    crate::syntax::structure::closer(*keyword) == Some(closing)
+                }) {
                     let start = open[position].1;
                     open.truncate(position);
                     push(

@@ -48,7 +48,7 @@ fn name(keyword: StructureKeyword) -> &'static str {
 }
 
 /// The keyword that closes an opening keyword.
-fn closer(keyword: StructureKeyword) -> Option<StructureKeyword> {
+pub fn closer(keyword: StructureKeyword) -> Option<StructureKeyword> {
     Some(match keyword {
         StructureKeyword::If => StructureKeyword::EndIf,
         StructureKeyword::While => StructureKeyword::EndWhile,
