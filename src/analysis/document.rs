@@ -326,7 +326,7 @@ impl DocumentAnalysis {
     /// The moves of the blocks in `lines` (0-based, end exclusive), in program order.
     pub fn moves(&self, source: &dyn LineSource, lines: Range<usize>) -> Vec<Move> {
         let mut moves = Vec::new();
-        self.visit_moves(source, lines, &mut |movement| moves.push(movement.clone()));
+        self.for_each_move(source, lines, &mut |movement| moves.push(movement));
         moves
     }
 
@@ -337,6 +337,17 @@ impl DocumentAnalysis {
         source: &dyn LineSource,
         lines: Range<usize>,
         visit: &mut dyn FnMut(&Move),
+    ) {
+        self.for_each_move(source, lines, &mut |movement| visit(&movement));
+    }
+
+    /// Like [`DocumentAnalysis::visit_moves`], handing each move over by value, so that
+    /// [`DocumentAnalysis::moves`] keeps the move as built instead of a copy of it.
+    fn for_each_move(
+        &self,
+        source: &dyn LineSource,
+        lines: Range<usize>,
+        visit: &mut dyn FnMut(Move),
     ) {
         let end = lines.end.min(source.line_count());
         if lines.start >= end {
@@ -355,7 +366,7 @@ impl DocumentAnalysis {
             parser.parse(line, &self.context, &mut block, &mut findings);
             findings.clear();
             if engine.step(line, &block, &mut findings) && index >= lines.start {
-                visit(&engine.describe_last_move(index, line, &block));
+                visit(engine.describe_last_move(index, line, &block));
             }
             true
         });

@@ -61,7 +61,7 @@ pub fn analyze(text: &str, config: &MachineConfig) -> Analysis {
 /// Parses and interprets a whole program of the given kind, in one pass over its blocks.
 pub fn analyze_program(text: &str, config: &MachineConfig, kind: ProgramKind) -> Analysis {
     let mut moves = Vec::new();
-    let diagnostics = visit_moves(text, config, kind, |movement| moves.push(movement.clone()));
+    let diagnostics = for_each_move(text, config, kind, |movement| moves.push(movement));
     Analysis { moves, diagnostics }
 }
 
@@ -86,10 +86,21 @@ pub fn visit_moves(
     kind: ProgramKind,
     mut visit: impl FnMut(&Move),
 ) -> Vec<LineDiagnostic> {
+    for_each_move(text, config, kind, |movement| visit(&movement))
+}
+
+/// Like [`visit_moves`], handing each move over by value, so that a caller that keeps them (as
+/// [`analyze_program`] does) takes the move as built instead of a copy of it.
+fn for_each_move(
+    text: &str,
+    config: &MachineConfig,
+    kind: ProgramKind,
+    mut visit: impl FnMut(Move),
+) -> Vec<LineDiagnostic> {
     let mut engine = new_engine(text, config, kind);
     crate::syntax::visit_blocks(text, config, |line_index, line, block, findings| {
         if engine.step(line, block, findings) {
-            visit(&engine.describe_last_move(line_index, line, block));
+            visit(engine.describe_last_move(line_index, line, block));
         }
     })
 }
