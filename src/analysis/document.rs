@@ -513,7 +513,8 @@ impl DocumentAnalysis {
             // Why the reading below stopped: at an old checkpoint whose state differs by a shift.
             let mut shift = None;
             source.for_each_line(resume_at, &mut |index, line| {
-                if index > resume_at || index != start.line && index == resume_at {
+                // The line the reading starts at was checked (or is the pass's start) already.
+                if index > resume_at {
                     while old_checkpoints
                         .get(next_old)
                         .is_some_and(|checkpoint| checkpoint.line < index)
