@@ -258,7 +258,14 @@ impl OpenDocument {
                 analysed.revision = revision;
             }
         } else {
-            let analysis = DocumentAnalysis::new(&RopeLines::new(&rope), config.clone(), self.kind);
+            // The whole document is read on two threads: the first analysis of a large program
+            // is what the user waits for after opening it.
+            let analysis = DocumentAnalysis::new_in_parallel(
+                &RopeLines::new(&rope),
+                &mut RopeLines::new(&rope),
+                config.clone(),
+                self.kind,
+            );
             *slot = Some(Analysed {
                 analysis,
                 rope,
