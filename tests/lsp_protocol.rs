@@ -681,3 +681,35 @@ async fn the_outline_and_the_folding_ranges_follow_the_program() {
     assert_eq!(structure["startLine"], 5, "{folds}");
     assert_eq!(structure["endLine"], 6, "{folds}");
 }
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn a_large_program_opened_arrives_whole_and_an_empty_one_stays_empty() {
+    let mut client = initialized_client().await;
+    // Over the size at which the input guard reads the didOpen itself, with text that JSON escapes.
+    let mut text = String::from("G90 G17 G71\n");
+    for index in 0..40_000 {
+        text.push_str(&format!(
+            "N{index} G1 X{}.5 Y=IC({}) F100 ; \"\u{e4}\\\r\n",
+            index % 90,
+            index % 7
+        ));
+        if index % 5000 == 0 {
+            text.push_str("Z=AC17\n");
+        }
+    }
+    let uri = "file:///nonexistent/large.mpf";
+    client.open(uri, 3, &text).await;
+    let diagnostics = client.diagnostics(uri, 3).await;
+    assert_eq!(
+        codes(&diagnostics),
+        expected_codes(&text, ProgramKind::Main),
+        "the diagnostics of the whole text"
+    );
+    assert!(!diagnostics.is_empty());
+    assert_eq!(client.document_text(uri).await, (3, text));
+    let empty = "file:///nonexistent/empty.mpf";
+    client.open(empty, 1, "").await;
+    client.diagnostics(empty, 1).await;
+    assert_eq!(client.document_text(empty).await, (1, String::new()));
+    client.shutdown().await;
+}

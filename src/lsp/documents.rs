@@ -8,8 +8,8 @@
 use crate::analysis::document::{DocumentAnalysis, LineSource};
 use crate::analysis::ProgramKind;
 use crate::config::MachineConfig;
-use crate::diagnostics::LineDiagnostic;
-use crate::lsp::convert::{diagnostics_json, publish_diagnostics_message, PositionEncoding};
+use crate::lsp::convert::{diagnostics_json, publish_diagnostics_frame, PositionEncoding};
+use crate::lsp::diagnostics_array::DiagnosticsArray;
 use crate::lsp::log;
 use crate::lsp::outgoing::{Outgoing, OutgoingSender};
 use crate::lsp::text_document::{
@@ -75,12 +75,12 @@ pub struct OpenDocument {
 }
 
 /// Diagnostics as last written. In an ASCII document the text of a diagnostic depends only on the
-/// diagnostic (columns are byte offsets), so an edit that leaves every diagnostic as it was (most
-/// keystrokes in a large program) reuses the text and only the version changes.
+/// diagnostic (columns are byte offsets), so the next array reuses what this one wrote: an edit that
+/// leaves every diagnostic as it was (most keystrokes in a large program) reuses all of it, and one
+/// that changes a few rewrites only those.
 struct Published {
-    diagnostics: Vec<LineDiagnostic>,
     encoding: PositionEncoding,
-    array: Arc<Vec<u8>>,
+    array: DiagnosticsArray,
 }
 
 /// What a worker needs besides the document.
@@ -116,29 +116,32 @@ impl OpenDocument {
         }
     }
 
-    /// The JSON array of the analysis's diagnostics, reused from the last time when it still holds.
+    /// The JSON array of the analysis's diagnostics, built from the last one where it still holds.
     fn diagnostics_array(&self, analysed: &Analysed, encoding: PositionEncoding) -> Arc<Vec<u8>> {
         let diagnostics = analysed.analysis.diagnostics();
         let all_ascii = analysed.rope.len_bytes() == analysed.rope.len_chars();
         let mut published = lock(&self.published);
-        if let Some(last) = published.as_ref() {
-            if all_ascii && last.encoding == encoding && last.diagnostics == diagnostics {
-                return Arc::clone(&last.array);
-            }
+        if !all_ascii {
+            *published = None;
+            let lines = analysed.lines();
+            return Arc::new(diagnostics_json(
+                diagnostics,
+                |line_idx| lines.line(line_idx),
+                false,
+                encoding,
+            ));
         }
-        let lines = analysed.lines();
-        let array = Arc::new(diagnostics_json(
-            diagnostics,
-            |line_idx| lines.line(line_idx),
-            all_ascii,
-            encoding,
-        ));
-        *published = all_ascii.then(|| Published {
-            diagnostics: diagnostics.to_vec(),
-            encoding,
-            array: Arc::clone(&array),
-        });
-        array
+        let previous = published
+            .as_ref()
+            .filter(|last| last.encoding == encoding)
+            .map(|last| &last.array);
+        if let Some(previous) = previous.filter(|previous| previous.is_of(diagnostics)) {
+            return Arc::clone(previous.json());
+        }
+        let array = DiagnosticsArray::build(previous, diagnostics);
+        let json = Arc::clone(array.json());
+        *published = Some(Published { encoding, array });
+        json
     }
 
     /// The current revision; a request remembers it to know whether its answer is still current.
@@ -286,8 +289,9 @@ impl OpenDocument {
                 let analysed_in = started.elapsed();
                 slot.as_ref().map(|analysed| {
                     let array = self.diagnostics_array(analysed, context.encoding);
-                    let message =
-                        publish_diagnostics_message(&self.uri, Some(analysed.version), &array);
+                    let (head, tail) =
+                        publish_diagnostics_frame(&self.uri, Some(analysed.version), array.len());
+                    let message = (head, array, tail);
                     let count = analysed.analysis.diagnostics().len();
                     (analysed.revision, message, count, analysed_in)
                 })
@@ -313,7 +317,8 @@ impl OpenDocument {
                     }
                     if text.revision == revision {
                         // Sent under the lock: a newer revision's publication cannot overtake it.
-                        context.outgoing.send_message(message);
+                        let (head, array, tail) = message;
+                        context.outgoing.send_parts(head, array, tail);
                         text.worker_running = false;
                         return;
                     }
