@@ -384,6 +384,40 @@ async fn settings_come_from_initialization_options() {
     client.shutdown().await;
 }
 
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn the_machine_kind_setting_makes_documents_without_a_configuration_file_lathe_programs() {
+    let text = "G90 G0 X40 Z5\nG1 X50\n";
+    let uri = "file:///nonexistent/lathe/part.mpf";
+    let mut mill = TestClient::in_process();
+    mill.initialize(json!({}), json!({})).await;
+    mill.open(uri, 1, text).await;
+    let on_a_mill = mill.hover(uri, 1, 4).await;
+    let mut lathe = TestClient::in_process();
+    lathe
+        .initialize(json!({}), json!({"machineKind": "turn"}))
+        .await;
+    lathe.open(uri, 1, text).await;
+    let on_a_lathe = lathe.hover(uri, 1, 4).await;
+    assert!(
+        on_a_lathe.to_lowercase().contains("diameter") && on_a_lathe.contains("radius 25"),
+        "X50 on a lathe is a diameter, radius 25: {on_a_lathe}"
+    );
+    assert!(
+        !on_a_mill.to_lowercase().contains("diameter"),
+        "{on_a_mill}"
+    );
+    // Switching the setting analyses the open documents again.
+    mill.notify(
+        "workspace/didChangeConfiguration",
+        json!({"settings": {"sinumerik": {"machineKind": "turn"}}}),
+    )
+    .await;
+    mill.diagnostics(uri, 1).await;
+    assert_eq!(mill.hover(uri, 1, 4).await, on_a_lathe);
+    mill.shutdown().await;
+    lathe.shutdown().await;
+}
+
 fn is_warning_about(params: &Value, words: &str) -> bool {
     params["message"]
         .as_str()

@@ -11,7 +11,7 @@
 //! - `words.rs`: where the words of a block are, for the cursor; `gcode_help.rs`: G-function texts.
 //! - `settings.rs`: settings and each document's machine configuration; `ext.rs`: own protocol types.
 //! - `outgoing.rs`: all output; the server's own notifications serialized straight to text.
-//! - `log.rs`: logging and slow-handler reports.
+//! - `log.rs`: logging and slow-handler reports; `memory.rs`: the allocator's options.
 //! - `framing.rs`: drops malformed messages before they reach the framework's reader.
 //! - `open_texts.rs`: the texts of large `didOpen` messages, which the guard reads itself.
 
@@ -26,6 +26,7 @@ mod gcode_help;
 mod hover;
 mod inlay;
 mod log;
+mod memory;
 mod numbers;
 mod open_texts;
 mod outgoing;
@@ -64,6 +65,7 @@ where
 
 /// Runs the server on the process's stdin and stdout; returns the exit code.
 pub fn serve_stdio() -> u8 {
+    memory::configure_allocator();
     // Analyses run in the blocking pool. Few threads keep few allocator arenas holding freed memory
     // (a 1,000,000-line analysis allocates hundreds of MB); stdin and stdout need one thread each.
     let runtime = match tokio::runtime::Builder::new_multi_thread()

@@ -240,7 +240,7 @@ impl Shared {
             }
             (old, settings.clone())
         };
-        if old.config_file != new.config_file {
+        if old.config_file != new.config_file || old.machine_kind != new.machine_kind {
             let context = self.context();
             for document in self.documents.all() {
                 let config = self.machine_config(document.path.as_deref());
