@@ -468,3 +468,73 @@ fn random_and_generated_programs_analysed_on_two_threads_match_one_thread() {
         }
     }
 }
+
+#[test]
+fn an_interrupted_update_is_finished_by_the_next_one_as_if_it_had_run_to_the_end() {
+    use sinumerik_lsp::analysis::document::INTERRUPTIBLE_AFTER_LINES;
+    let config = Arc::new(MachineConfig::mill());
+    let line_count = 3 * INTERRUPTIBLE_AFTER_LINES;
+    let mut lines: Vec<String> = (0..line_count)
+        .map(|index| match index {
+            0 => "G17 G90 G71 G54 G1 F500".to_string(),
+            index if index % 997 == 0 => "Z=AC17".to_string(),
+            index if index % 1999 == 0 => "G2 X10 Y0 I5 J0".to_string(),
+            // Pairs of moves that cancel under G91, so that positions stay small (a sum of
+            // increments and a carried shift of them agree to the last digits printed).
+            index => {
+                let sign = if index % 2 == 0 { "" } else { "-" };
+                format!("X{sign}{}.5 Y{sign}{}", index / 2 % 83, index / 2 % 29)
+            }
+        })
+        .collect();
+    // Blocks that change how every later block reads, so that updates read far.
+    let far_reaching = ["G91", "G90", "G70", "TRANS X10", "G1 X=IC(3)", "X7 Y7"];
+    let mut analysis = DocumentAnalysis::new(
+        &TextLines::new(&joined(&lines)),
+        config.clone(),
+        ProgramKind::Main,
+    );
+    let mut random = Random(2024);
+    let mut interruptions = 0;
+    for step in 0..24 {
+        let first = random.below(lines.len() / 2);
+        let removed = random.below(2);
+        let inserted: Vec<String> = (0..random.below(3))
+            .map(|_| far_reaching[random.below(far_reaching.len())].to_string())
+            .collect();
+        let inserted_count = inserted.len();
+        lines.splice(first..first + removed, inserted);
+        let text = joined(&lines);
+        let source = TextLines::new(&text);
+        let interrupt = step % 3 != 2;
+        let finished =
+            analysis.update_interruptible(&source, first, removed, inserted_count, &|| interrupt);
+        if finished {
+            let fresh = DocumentAnalysis::new(&source, config.clone(), ProgramKind::Main);
+            assert_same_diagnostics(
+                analysis.diagnostics(),
+                fresh.diagnostics(),
+                &format!("step {step}: after a finished update"),
+            );
+            let line = random.below(lines.len());
+            assert_eq!(
+                rounded_debug(&analysis.block_report(&source, line)),
+                rounded_debug(&fresh.block_report(&source, line)),
+                "step {step}: block report of line {line}"
+            );
+        } else {
+            assert!(interrupt, "step {step}: only an interrupted update stops");
+            interruptions += 1;
+        }
+    }
+    // The last edit: a line replaced by itself, finishing whatever was left.
+    let text = joined(&lines);
+    let source = TextLines::new(&text);
+    assert!(analysis.update_interruptible(&source, 5, 1, 1, &|| false));
+    let fresh = DocumentAnalysis::new(&source, config, ProgramKind::Main);
+    assert_same_diagnostics(analysis.diagnostics(), fresh.diagnostics(), "at the end");
+    assert!(
+        interruptions >= 2,
+        "updates were interrupted ({interruptions} times)"
+    );
+}

@@ -8,6 +8,11 @@
 //! old diagnostics are kept, moved by the number of lines inserted or removed. A block's report (for a
 //! hover) replays at most one interval from the nearest checkpoint. The result is always the one a
 //! from-scratch analysis of the same text gives (tested on random edits).
+//!
+//! A long update (an edit that changes how the whole rest of a program reads) can be interrupted by
+//! a newer edit: it keeps what it read and leaves the rest to the next update, which reads it with
+//! the new edit's lines. The first analysis of a large document reads its two halves on two threads
+//! (see [`DocumentAnalysis::new_in_parallel`]).
 
 use crate::analysis::engine::{Engine, EngineSnapshot};
 use crate::analysis::position_reads::{
@@ -35,6 +40,10 @@ const PARALLEL_HALF_MIN_LINES: usize = 16 * CHECKPOINT_INTERVAL;
 /// before the middle.
 const GUESS_HEAD_LINES: usize = 2 * CHECKPOINT_INTERVAL;
 const GUESS_TAIL_LINES: usize = 2 * CHECKPOINT_INTERVAL;
+
+/// An update may be interrupted once it has read this many lines: shorter ones finish within
+/// milliseconds, and stopping them would only add work.
+pub const INTERRUPTIBLE_AFTER_LINES: usize = 64 * CHECKPOINT_INTERVAL;
 
 /// A line defines a macro: every line may read differently, so the whole document is analysed again.
 const DEFINES_MACRO: u8 = 1;
@@ -161,6 +170,10 @@ pub struct DocumentAnalysis {
     combined: Option<Vec<LineDiagnostic>>,
     /// How many lines the last update or analysis read, for benchmarks and tests.
     lines_read: usize,
+    /// Lines an interrupted update left unread (the numbering of the text it read): from the first
+    /// line it did not read to the end of what it had to read. Until the next update reads them, the
+    /// findings and checkpoints from there on are those of before that update.
+    unread: Option<Range<usize>>,
 }
 
 /// What one forward pass found.
@@ -177,6 +190,28 @@ struct Pass {
     tail: Vec<LineDiagnostic>,
     /// The state at the pass's `stop_at` line, when it stopped there.
     stopped: Option<Checkpoint>,
+    /// The line (new numbering) at which the pass was interrupted, a checkpoint of its own.
+    interrupted_at: Option<usize>,
+}
+
+/// The old findings at lines from `from` on (old numbering) are `by` lines further in the new text.
+struct MovedLines {
+    from: usize,
+    by: isize,
+}
+
+/// Where a pass stops besides convergence and the end: at `stop_at`, and at a checkpoint when
+/// `interrupted` says so (see [`DocumentAnalysis::update_interruptible`]).
+struct PassLimits<'a> {
+    stop_at: usize,
+    interrupted: &'a dyn Fn() -> bool,
+}
+
+impl PassLimits<'_> {
+    const NONE: PassLimits<'static> = PassLimits {
+        stop_at: usize::MAX,
+        interrupted: &|| false,
+    };
 }
 
 /// The per-line position reads of the lines from `base` on, which a pass fills in: a pass over part of
@@ -228,6 +263,7 @@ impl DocumentAnalysis {
             tail: Vec::new(),
             combined: None,
             lines_read: 0,
+            unread: None,
         };
         analysis.recompute(source);
         analysis
@@ -254,6 +290,7 @@ impl DocumentAnalysis {
             tail: Vec::new(),
             combined: None,
             lines_read: 0,
+            unread: None,
         };
         analysis.recompute_in_parallel(source, helper_source);
         analysis
@@ -269,6 +306,22 @@ impl DocumentAnalysis {
         removed: usize,
         inserted: usize,
     ) {
+        self.update_interruptible(source, first_line, removed, inserted, &|| false);
+    }
+
+    /// Like [`DocumentAnalysis::update`], but a long reading asks `interrupted` now and then (every
+    /// checkpoint, once it has read [`INTERRUPTIBLE_AFTER_LINES`] lines) whether to stop: a newer
+    /// edit has come, and reading on for this text would be wasted. Returns false when it stopped:
+    /// the analysis must then be updated again (with the next change of the text it was given)
+    /// before it is used, and that update reads the lines this one left.
+    pub fn update_interruptible(
+        &mut self,
+        source: &dyn LineSource,
+        first_line: usize,
+        removed: usize,
+        inserted: usize,
+        interrupted: &dyn Fn() -> bool,
+    ) -> bool {
         let old_count = self.line_flags.len();
         let new_count = source.line_count();
         let fits = first_line
@@ -277,8 +330,19 @@ impl DocumentAnalysis {
             && old_count - removed + inserted == new_count;
         if !fits {
             self.recompute(source);
-            return;
+            return true;
         }
+        // Lines an interrupted update did not read count as changed, with the lines between.
+        let (first_line, removed, inserted) = match self.unread.take() {
+            None => (first_line, removed, inserted),
+            Some(unread) => {
+                let start = first_line.min(unread.start);
+                let end = (first_line + removed).max(unread.end).min(old_count);
+                let start = start.min(end);
+                let new_end = end + inserted - removed;
+                (start, end - start, new_end - start)
+            }
+        };
         let removed_flags = self.line_flags[first_line..first_line + removed]
             .iter()
             .any(|flags| *flags != 0);
@@ -288,7 +352,7 @@ impl DocumentAnalysis {
         if removed_flags || inserted_flags.iter().any(|flags| *flags != 0) {
             // A macro or a PROC header appeared or went: every line may read differently.
             self.recompute(source);
-            return;
+            return true;
         }
         self.line_flags
             .splice(first_line..first_line + removed, inserted_flags);
@@ -321,9 +385,12 @@ impl DocumentAnalysis {
             start,
             first_line + inserted,
             later,
-            old_region_end,
-            delta,
-        );
+            MovedLines {
+                from: old_region_end,
+                by: delta,
+            },
+            interrupted,
+        )
     }
 
     /// Reads the document again from `start` (one of `self.checkpoints`, which end with it), where
@@ -336,9 +403,13 @@ impl DocumentAnalysis {
         start: Checkpoint,
         changed_end: usize,
         mut later: Vec<Checkpoint>,
-        old_region_end: usize,
-        delta: isize,
-    ) {
+        moved: MovedLines,
+        interrupted: &dyn Fn() -> bool,
+    ) -> bool {
+        let MovedLines {
+            from: old_region_end,
+            by: delta,
+        } = moved;
         let mut position_reads = std::mem::take(&mut self.position_reads);
         let pass = self.run_pass(
             source,
@@ -349,7 +420,10 @@ impl DocumentAnalysis {
                 base: 0,
                 reads: &mut position_reads,
             },
-            usize::MAX,
+            PassLimits {
+                stop_at: usize::MAX,
+                interrupted,
+            },
         );
         self.position_reads = position_reads;
         // Diagnostics: those before the pass's start stay; the pass's replace what it re-read; the
@@ -358,7 +432,8 @@ impl DocumentAnalysis {
         let prefix_end = self.body.partition_point(|item| item.line < start.line);
         let old_rest: Vec<LineDiagnostic> = self.body.drain(prefix_end..).collect();
         let mut kept_ranges = pass.kept.iter().peekable();
-        let converged_at = pass.converged_at;
+        // From an interruption on, everything stays as it was, like after a convergence.
+        let converged_at = pass.converged_at.or(pass.interrupted_at);
         let kept = old_rest.into_iter().filter_map(|mut item| {
             if item.line < old_region_end {
                 return None;
@@ -377,14 +452,20 @@ impl DocumentAnalysis {
                 .then_some(item)
         });
         merge_by_line(&mut self.body, pass.diagnostics, kept);
-        match pass.converged_at {
+        match converged_at {
             Some(converged_line) => {
                 for item in &mut self.tail {
                     if item.line >= old_region_end {
                         item.line = item.line.saturating_add_signed(delta);
                     }
                 }
-                let index = later.partition_point(|checkpoint| checkpoint.line < converged_line);
+                // An interrupted pass has a checkpoint of its own at the line it stopped at.
+                let index = match pass.interrupted_at {
+                    Some(_) => {
+                        later.partition_point(|checkpoint| checkpoint.line <= converged_line)
+                    }
+                    None => later.partition_point(|checkpoint| checkpoint.line < converged_line),
+                };
                 self.checkpoints.extend(pass.checkpoints);
                 self.checkpoints.extend(later.drain(index..));
             }
@@ -394,7 +475,18 @@ impl DocumentAnalysis {
             }
         }
         self.lines_read += pass.lines_read;
+        if let (None, Some(line)) = (pass.converged_at, pass.interrupted_at) {
+            self.unread = Some(line..changed_end.max(line + 1));
+            return false;
+        }
         self.combine();
+        true
+    }
+
+    /// Whether the analysis describes the whole text it was last given: false after an interrupted
+    /// update, until the next update.
+    pub fn is_complete(&self) -> bool {
+        self.unread.is_none()
     }
 
     /// How many lines the last update (or the first analysis) read: the cost of an edit.
@@ -541,7 +633,7 @@ impl DocumentAnalysis {
                 base: 0,
                 reads: &mut position_reads,
             },
-            usize::MAX,
+            PassLimits::NONE,
         );
         self.position_reads = position_reads;
         self.checkpoints = vec![start];
@@ -554,6 +646,7 @@ impl DocumentAnalysis {
 
     /// Reads the whole-document facts (macros, `PROC` headers) and gives the state before line 0.
     fn prepare_from_scratch(&mut self, source: &dyn LineSource) -> Checkpoint {
+        self.unread = None;
         self.line_flags = Vec::with_capacity(source.line_count());
         self.context = SyntaxContext::new(&self.config);
         let mut has_proc_header = false;
@@ -614,7 +707,7 @@ impl DocumentAnalysis {
                         base: middle,
                         reads: second_reads,
                     },
-                    usize::MAX,
+                    PassLimits::NONE,
                 );
                 (guess, second)
             });
@@ -627,7 +720,10 @@ impl DocumentAnalysis {
                     base: 0,
                     reads: first_reads,
                 },
-                middle,
+                PassLimits {
+                    stop_at: middle,
+                    interrupted: &|| false,
+                },
             );
             (first, helper.join())
         });
@@ -647,7 +743,17 @@ impl DocumentAnalysis {
             Ok(result) => result,
             Err(_) => {
                 // The helper thread failed (a bug): the second half is read here instead.
-                self.read_again_from(source, end_of_first, middle + 1, Vec::new(), line_count, 0);
+                self.read_again_from(
+                    source,
+                    end_of_first,
+                    middle + 1,
+                    Vec::new(),
+                    MovedLines {
+                        from: line_count,
+                        by: 0,
+                    },
+                    &|| false,
+                );
                 return;
             }
         };
@@ -668,8 +774,11 @@ impl DocumentAnalysis {
                 end_of_first,
                 middle + 1,
                 second.checkpoints,
-                middle + 1,
-                0,
+                MovedLines {
+                    from: middle + 1,
+                    by: 0,
+                },
+                &|| false,
             );
         }
     }
@@ -723,7 +832,7 @@ impl DocumentAnalysis {
         changed_end: usize,
         old_checkpoints: &mut [Checkpoint],
         mut position_reads: PositionReads<'_>,
-        stop_at: usize,
+        limits: PassLimits<'_>,
     ) -> Pass {
         let line_count = source.line_count();
         let mut engine = Engine::from_snapshot(&self.config, start.engine);
@@ -740,6 +849,7 @@ impl DocumentAnalysis {
             converged_at: None,
             tail: Vec::new(),
             stopped: None,
+            interrupted_at: None,
         };
         let first_old = old_checkpoints.partition_point(|checkpoint| checkpoint.line < changed_end);
         let mut next_old = first_old;
@@ -764,7 +874,7 @@ impl DocumentAnalysis {
                         pass.converged_at = Some(index);
                         return false;
                     }
-                    if index >= stop_at {
+                    if index >= limits.stop_at {
                         pass.stopped = Some(Checkpoint {
                             line: index,
                             engine: engine.snapshot(),
@@ -784,6 +894,10 @@ impl DocumentAnalysis {
                             engine: engine.snapshot(),
                             structure: structure.clone(),
                         });
+                        if pass.lines_read >= INTERRUPTIBLE_AFTER_LINES && (limits.interrupted)() {
+                            pass.interrupted_at = Some(index);
+                            return false;
+                        }
                     }
                 }
                 pass.lines_read += 1;
@@ -862,7 +976,7 @@ impl DocumentAnalysis {
             }
             resume_at = old_checkpoints[current].line;
         }
-        if pass.converged_at.is_none() && pass.stopped.is_none() {
+        if pass.converged_at.is_none() && pass.stopped.is_none() && pass.interrupted_at.is_none() {
             structure.finish(&mut pass.tail);
             for item in &mut pass.tail {
                 item.diagnostic.severity = self.config.severity_of(item.diagnostic.code);

@@ -222,62 +222,88 @@ impl OpenDocument {
     /// worker that is analysing, and may itself do the work a worker would have done.
     pub fn catch_up(&self) -> MutexGuard<'_, Option<Analysed>> {
         let mut slot = lock(&self.analysis);
-        let (rope, version, revision, pending, config) = {
-            let mut text = lock(&self.text);
-            if slot
-                .as_ref()
-                .is_some_and(|analysed| analysed.revision == text.revision)
-            {
-                return slot;
+        loop {
+            let (rope, version, revision, pending, config) = {
+                let mut text = lock(&self.text);
+                // A closed document is not brought up to date: nothing of it is published any more.
+                if text.closed
+                    || slot
+                        .as_ref()
+                        .is_some_and(|analysed| analysed.revision == text.revision)
+                {
+                    return slot;
+                }
+                let pending = std::mem::replace(&mut text.pending, Pending::Nothing);
+                (
+                    text.text.rope.clone(),
+                    text.text.version,
+                    text.revision,
+                    pending,
+                    text.config.clone(),
+                )
+            };
+            // A long update stops when a newer edit has come: it goes on with that edit's text.
+            let newer_edit = || lock(&self.text).revision != revision;
+            let updated = match (slot.as_mut(), pending) {
+                (Some(analysed), pending) if Arc::ptr_eq(&analysed.config, &config) => {
+                    let source = RopeLines::new(&rope);
+                    match pending {
+                        Pending::Lines(change) => {
+                            let line_change = change
+                                .to_core(core_line_count(&analysed.rope), source.line_count());
+                            Some(analysed.analysis.update_interruptible(
+                                &source,
+                                line_change.first,
+                                line_change.removed,
+                                line_change.inserted,
+                                &newer_edit,
+                            ))
+                        }
+                        // The text did not change (or the document was closed): only what an
+                        // interrupted update left is read.
+                        Pending::Nothing if analysed.analysis.is_complete() => Some(true),
+                        Pending::Nothing => Some(analysed.analysis.update_interruptible(
+                            &source,
+                            0,
+                            0,
+                            0,
+                            &newer_edit,
+                        )),
+                        Pending::Everything => None,
+                    }
+                }
+                _ => None,
+            };
+            match (updated, slot.as_mut()) {
+                (Some(finished), Some(analysed)) => {
+                    // The analysis now describes this text, up to what an interruption left.
+                    analysed.rope = rope;
+                    if finished {
+                        analysed.version = version;
+                        analysed.revision = revision;
+                        return slot;
+                    }
+                }
+                _ => {
+                    // The whole document is read on two threads: the first analysis of a large
+                    // program is what the user waits for after opening it.
+                    let analysis = DocumentAnalysis::new_in_parallel(
+                        &RopeLines::new(&rope),
+                        &mut RopeLines::new(&rope),
+                        config.clone(),
+                        self.kind,
+                    );
+                    *slot = Some(Analysed {
+                        analysis,
+                        rope,
+                        version,
+                        revision,
+                        config,
+                    });
+                    return slot;
+                }
             }
-            let pending = std::mem::replace(&mut text.pending, Pending::Nothing);
-            (
-                text.text.rope.clone(),
-                text.text.version,
-                text.revision,
-                pending,
-                text.config.clone(),
-            )
-        };
-        let updated = match (slot.as_mut(), pending) {
-            (Some(analysed), Pending::Lines(change)) if Arc::ptr_eq(&analysed.config, &config) => {
-                let source = RopeLines::new(&rope);
-                let line_change =
-                    change.to_core(core_line_count(&analysed.rope), source.line_count());
-                analysed.analysis.update(
-                    &source,
-                    line_change.first,
-                    line_change.removed,
-                    line_change.inserted,
-                );
-                true
-            }
-            _ => false,
-        };
-        if updated {
-            if let Some(analysed) = slot.as_mut() {
-                analysed.rope = rope;
-                analysed.version = version;
-                analysed.revision = revision;
-            }
-        } else {
-            // The whole document is read on two threads: the first analysis of a large program
-            // is what the user waits for after opening it.
-            let analysis = DocumentAnalysis::new_in_parallel(
-                &RopeLines::new(&rope),
-                &mut RopeLines::new(&rope),
-                config.clone(),
-                self.kind,
-            );
-            *slot = Some(Analysed {
-                analysis,
-                rope,
-                version,
-                revision,
-                config,
-            });
         }
-        slot
     }
 
     /// Analyses until the analysis matches the newest revision, then publishes its diagnostics.
