@@ -44,8 +44,8 @@ where
     I: AsyncRead + Unpin + Send + 'static,
     O: AsyncWrite + Unpin + Send + 'static,
 {
-    let input = framing::guard_input(input);
     let (outgoing, framework_output, output_tasks) = outgoing::start(output);
+    let input = framing::guard_input(input, outgoing.clone());
     let (service, socket) = LspService::build(move |client| server::Backend::new(client, outgoing))
         .custom_method(ext::DOCUMENT_TEXT_REQUEST, server::Backend::document_text)
         .custom_method(ext::MODAL_STATE_REQUEST, server::Backend::modal_state)
