@@ -6,10 +6,13 @@
 //! `DIFFERENTIAL_STEPS=100000 cargo test --release --test differential_corpus -- --nocapture`, see
 //! docs/reliability.md) and `DIFFERENTIAL_SEED` the seed.
 
+#[path = "support/env_setting.rs"]
+mod env_setting;
 #[allow(dead_code)]
 #[path = "support/fuzz.rs"]
 mod fuzz;
 
+use env_setting::setting;
 use fuzz::{document, random, seeds};
 
 use document::{check_document, random_edit, DocumentCase};
@@ -20,13 +23,6 @@ use std::path::Path;
 /// next file is taken.
 const STEPS: usize = 2_000;
 const STEPS_PER_DOCUMENT: usize = 25;
-
-fn setting(name: &str, default: u64) -> u64 {
-    std::env::var(name)
-        .ok()
-        .and_then(|value| value.replace('_', "").parse().ok())
-        .unwrap_or(default)
-}
 /// A window of a long file, so that one step stays in the milliseconds.
 const MAX_LINES: usize = 3_000;
 

@@ -51,6 +51,28 @@ fn hover_request(id: i64, line: u32, character: u32) -> Vec<u8> {
     )
 }
 
+/// An LSP change: start and end as (line, UTF-16 column), and the new text.
+type Change = ((u32, u32), (u32, u32), &'static str);
+
+/// Sends `changes` as one `didChange` of `version` and applies them to `text` as the protocol
+/// defines.
+fn send_changes(
+    server: &mut RawServer,
+    uri: &str,
+    version: i64,
+    changes: &[Change],
+    text: &mut String,
+) {
+    let json_changes: Vec<Value> = changes
+        .iter()
+        .map(|(start, end, new_text)| json!({"range": {"start": {"line": start.0, "character": start.1}, "end": {"line": end.0, "character": end.1}}, "text": new_text}))
+        .collect();
+    server.change(uri, version, Value::Array(json_changes));
+    for (start, end, new_text) in changes {
+        apply_edit(text, *start, *end, new_text);
+    }
+}
+
 /// Error responses without an id (to messages whose id could not be read).
 fn errors_without_id(messages: &[Value]) -> Vec<i64> {
     messages
@@ -155,7 +177,8 @@ fn a_wrong_content_length_costs_only_its_own_message() {
             "a length that is too short",
             with_length(&(body.len() - 10).to_string()),
         ),
-        // The next message's header and the start of its body are read as this message's end.
+        // The next message's header and the start of its body are read as this message's end; the
+        // server reads on from that header.
         (
             "a length that is too long",
             with_length(&(body.len() + 40).to_string()),
@@ -253,7 +276,7 @@ fn a_header_and_body_split_across_many_reads_are_put_together() {
 }
 
 #[test]
-fn an_unknown_request_is_method_not_found_and_an_unknown_notification_is_ignored() {
+fn an_unknown_request_is_method_not_found_and_unknown_notifications_and_responses_are_ignored() {
     let mut server = serving_server();
     let error = server.request("sinumerik/nothing", json!({})).unwrap_err();
     assert_eq!(error["code"], -32601);
@@ -267,6 +290,10 @@ fn an_unknown_request_is_method_not_found_and_an_unknown_notification_is_ignored
     server.notify("sinumerik/unknownNotification", json!({"a": 1}));
     server.notify("$/somethingOptional", json!({}));
     server.notify("textDocument/unheardOf", Value::Null);
+    // A response to a request the server never sent is ignored as well.
+    server.write_raw(&frame(
+        br#"{"jsonrpc": "2.0", "id": 12345, "result": {"answer": 42}}"#,
+    ));
     assert_still_serves(&mut server, "unknown notifications");
     let received = server.take_received();
     assert!(
@@ -361,17 +388,12 @@ fn positions_past_the_end_of_a_line_or_the_file_are_clamped() {
         -32602
     );
     // Edits past the end of a line and of the file land at the ends.
-    let edits = [
+    let edits: [Change; 2] = [
         ((0, 900), (0, 1000), " ; first"),
         ((50, 3), (60, 0), "N30 Z=IC(1)\n"),
     ];
-    for (version, (start, end, new_text)) in edits.iter().enumerate() {
-        server.change(
-            uri,
-            2 + version as i64,
-            json!([{"range": {"start": {"line": start.0, "character": start.1}, "end": {"line": end.0, "character": end.1}}, "text": new_text}]),
-        );
-        apply_edit(&mut text, *start, *end, new_text);
+    for (index, change) in edits.iter().enumerate() {
+        send_changes(&mut server, uri, 2 + index as i64, &[*change], &mut text);
     }
     assert_eq!(server.document_text(uri), Ok((3, text.clone())));
     assert_eq!(text, "N10 G90 G0 X10 Z5 ; first\nN20 G91 Z2\nN30 Z=IC(1)\n");
@@ -399,7 +421,7 @@ fn utf16_columns_inside_a_surrogate_pair_mean_the_start_of_the_character() {
     let mut text = "N10 G0 😀 X1\nN20 Z=IC(2) 😀\n".to_string();
     server.open(uri, 1, &text);
     server.diagnostics(uri, 1);
-    let changes = [
+    let changes: [Change; 3] = [
         // Inside the pair: before the emoji.
         ((0, 8), (0, 8), "A"),
         // From inside the second emoji to the line's end: the whole emoji goes.
@@ -407,13 +429,8 @@ fn utf16_columns_inside_a_surrogate_pair_mean_the_start_of_the_character() {
         // From "G0" to inside the first emoji (now at 8 and 9): up to the emoji.
         ((0, 4), (0, 9), "G1 "),
     ];
-    for (version, (start, end, new_text)) in changes.iter().enumerate() {
-        server.change(
-            uri,
-            2 + version as i64,
-            json!([{"range": {"start": {"line": start.0, "character": start.1}, "end": {"line": end.0, "character": end.1}}, "text": new_text}]),
-        );
-        apply_edit(&mut text, *start, *end, new_text);
+    for (index, change) in changes.iter().enumerate() {
+        send_changes(&mut server, uri, 2 + index as i64, &[*change], &mut text);
     }
     assert_eq!(text, "N10 G1 😀 X1\nN20 Z=IC(2) \n");
     assert_eq!(server.document_text(uri), Ok((4, text.clone())));
@@ -472,7 +489,7 @@ fn range_edits_across_crlf_and_lone_cr_give_the_protocols_text() {
         "N10 G90 G0 X10 Z5\r\nN20 G91 Z2\r\nN30 Z3\r\nN40 G90 Z=AC(1)\r\nM30\r\n".to_string();
     server.open(uri, 1, &text);
     server.diagnostics(uri, 1);
-    let didchanges: [&[((u32, u32), (u32, u32), &str)]; 5] = [
+    let didchanges: [&[Change]; 5] = [
         // From before N20's "2" across its CRLF to the end of N30: "N20 G91 Z7".
         &[((1, 9), (2, 6), "7")],
         // Past the end of line 0 is before its CR.
@@ -487,14 +504,7 @@ fn range_edits_across_crlf_and_lone_cr_give_the_protocols_text() {
     ];
     for (index, changes) in didchanges.iter().enumerate() {
         let version = 2 + index as i64;
-        let json_changes: Vec<Value> = changes
-            .iter()
-            .map(|(start, end, new_text)| json!({"range": {"start": {"line": start.0, "character": start.1}, "end": {"line": end.0, "character": end.1}}, "text": new_text}))
-            .collect();
-        server.change(uri, version, Value::Array(json_changes));
-        for (start, end, new_text) in changes.iter() {
-            apply_edit(&mut text, *start, *end, new_text);
-        }
+        send_changes(&mut server, uri, version, changes, &mut text);
         assert_eq!(
             server.document_text(uri),
             Ok((version, text.clone())),

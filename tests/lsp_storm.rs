@@ -12,10 +12,13 @@
 mod compare;
 #[path = "support/edit_session.rs"]
 mod edit_session;
+#[path = "support/env_setting.rs"]
+mod env_setting;
 #[path = "support/raw_lsp.rs"]
 mod raw_lsp;
 
 use edit_session::{program, LineDocument, Random};
+use env_setting::setting;
 use raw_lsp::RawServer;
 use serde_json::Value;
 use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
@@ -27,18 +30,11 @@ const URI: &str = "file:///nonexistent/storm.mpf";
 /// A request (hover or preview) for every this many edits sent.
 const EDITS_PER_REQUEST: usize = 10;
 
-fn setting(name: &str, default: usize) -> usize {
-    std::env::var(name)
-        .ok()
-        .and_then(|value| value.replace('_', "").parse().ok())
-        .unwrap_or(default)
-}
-
 #[test]
 fn an_edit_storm_with_hovers_and_previews_ends_in_step_with_a_fresh_analysis() {
-    let edit_count = setting("STORM_EDITS", 10_000);
-    let line_count = setting("STORM_LINES", 100_000);
-    let mut random = Random::new(setting("STORM_SEED", 1) as u64);
+    let edit_count = setting("STORM_EDITS", 10_000) as usize;
+    let line_count = setting("STORM_LINES", 100_000) as usize;
+    let mut random = Random::new(setting("STORM_SEED", 1));
     let text = program(&mut random, line_count, "\n");
     let mut document = LineDocument::new(&text, "\n");
     let mut server = RawServer::spawn();
@@ -169,4 +165,28 @@ fn an_edit_storm_with_hovers_and_previews_ends_in_step_with_a_fresh_analysis() {
         eprintln!("the server's log:\n{}", server.log());
     }
     assert_eq!(server.shutdown(), Some(0));
+}
+
+#[test]
+fn the_local_copy_applies_edits_as_the_protocol_defines() {
+    let mut document = LineDocument::new("N10 X1\r\nN20 😀X2\r\n", "\r\n");
+    // Inside the surrogate pair of the emoji: the start of the character.
+    document.apply(&edit_session::Edit {
+        start: (1, 5),
+        end: (1, 5),
+        text: "A".to_string(),
+    });
+    assert_eq!(document.text(), "N10 X1\r\nN20 A😀X2\r\n");
+    document.apply(&edit_session::Edit {
+        start: (0, 500),
+        end: (1, 4),
+        text: " ".to_string(),
+    });
+    assert_eq!(document.text(), "N10 X1 A😀X2\r\n");
+    document.apply(&edit_session::Edit {
+        start: (9, 0),
+        end: (9, 0),
+        text: "M30".to_string(),
+    });
+    assert_eq!(document.text(), "N10 X1 A😀X2\r\nM30");
 }

@@ -128,7 +128,8 @@ pub struct LineDocument {
 }
 
 /// The byte offset in `line` of a UTF-16 column, clamped to the line; inside a surrogate pair it is
-/// the start of the character (as the protocol's servers clamp).
+/// the start of the character (as the protocol's servers clamp). Written here again on purpose: the
+/// copy the server's text is compared with must not share the server's conversions.
 pub fn utf16_to_byte(line: &str, character: usize) -> usize {
     let mut units = 0;
     for (byte, ch) in line.char_indices() {
@@ -211,7 +212,7 @@ impl LineDocument {
         let (line, column) = self.position(random);
         let last = self.lines.len() - 1;
         let terminator = self.terminator;
-        let edit = match random.below(20) {
+        let edit = match random.below(24) {
             // Typing.
             0..=7 => Edit {
                 start: (line, column),
@@ -283,6 +284,12 @@ impl LineDocument {
                 end: (line, column + 1000),
                 text: " ; end".to_string(),
             },
+            // A line typed over with a fresh block (keeps the document from filling up with junk).
+            19..=22 => Edit {
+                start: (line, 0),
+                end: (line, self.utf16_len(line)),
+                text: block(random, 10 * line),
+            },
             _ => Edit {
                 start: (self.lines.len() + 5, 0),
                 end: (self.lines.len() + 5, 0),
@@ -294,31 +301,69 @@ impl LineDocument {
     }
 }
 
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn edits_apply_as_the_protocol_defines() {
-        let mut document = LineDocument::new("N10 X1\r\nN20 😀X2\r\n", "\r\n");
-        // Inside the surrogate pair of the emoji: the start of the character.
-        document.apply(&Edit {
-            start: (1, 5),
-            end: (1, 5),
-            text: "A".to_string(),
-        });
-        assert_eq!(document.text(), "N10 X1\r\nN20 A😀X2\r\n");
-        document.apply(&Edit {
-            start: (0, 500),
-            end: (1, 4),
-            text: " ".to_string(),
-        });
-        assert_eq!(document.text(), "N10 X1 A😀X2\r\n");
-        document.apply(&Edit {
-            start: (9, 0),
-            end: (9, 0),
-            text: "M30".to_string(),
-        });
-        assert_eq!(document.text(), "N10 X1 A😀X2\r\nM30");
+impl LineDocument {
+    /// A random edit that keeps the document as sound as it was, for long runs (random typing fills
+    /// a document with findings, and every publication grows): a changed digit, a comment at a line's
+    /// end, a line typed over with a fresh block, a new block, a deleted line, or a typo taken back
+    /// at once (two edits). Already applied to this copy.
+    pub fn tidy_edits(&mut self, random: &mut Random) -> Vec<Edit> {
+        let (line, column) = self.position(random);
+        let length = self.utf16_len(line);
+        let edits = match random.below(20) {
+            // The first decimal of the last coordinate (never a digit of a G or M function).
+            0..=7 => match self.lines[line].rfind('.').filter(|&dot| {
+                self.lines[line][dot + 1..].starts_with(|ch: char| ch.is_ascii_digit())
+            }) {
+                Some(dot) => {
+                    let column = byte_to_utf16(&self.lines[line], dot + 1);
+                    vec![Edit {
+                        start: (line, column),
+                        end: (line, column + 1),
+                        text: random.below(10).to_string(),
+                    }]
+                }
+                None => Vec::new(),
+            },
+            8 | 9 if !self.lines[line].contains(';') => vec![Edit {
+                start: (line, length),
+                end: (line, length),
+                text: " ; geprüft".to_string(),
+            }],
+            10..=12 => vec![Edit {
+                start: (line, 0),
+                end: (line, length),
+                text: block(random, 10 * line),
+            }],
+            13 | 14 => vec![Edit {
+                start: (line, 0),
+                end: (line, 0),
+                text: format!("{}{}", block(random, 10 * line + 5), self.terminator),
+            }],
+            15 | 16 if line + 1 < self.lines.len() => vec![Edit {
+                start: (line, 0),
+                end: (line + 1, 0),
+                text: String::new(),
+            }],
+            _ => {
+                let typo = random.word(PIECES);
+                let typed_end = column + typo.encode_utf16().count();
+                vec![
+                    Edit {
+                        start: (line, column),
+                        end: (line, column),
+                        text: typo.to_string(),
+                    },
+                    Edit {
+                        start: (line, column),
+                        end: (line, typed_end),
+                        text: String::new(),
+                    },
+                ]
+            }
+        };
+        for edit in &edits {
+            self.apply(edit);
+        }
+        edits
     }
 }
