@@ -39,6 +39,8 @@ struct Document {
     version: i64,
     /// The diagnostics published for `version`.
     diagnostics: Vec<Value>,
+    /// The `didChange`s sent.
+    edits: i64,
 }
 
 #[derive(Clone, Copy, PartialEq, Eq)]
@@ -106,6 +108,7 @@ fn step(
             for _ in 0..1 + random.below(4) {
                 for edit in document.local.tidy_edits(random) {
                     document.version += 1;
+                    document.edits += 1;
                     started = Instant::now();
                     server.change(&uri, document.version, json!([edit.to_json()]));
                 }
@@ -202,6 +205,7 @@ fn main() {
             local: LineDocument::new(&program(&mut random, *lines, terminator), terminator),
             version: 1,
             diagnostics: Vec::new(),
+            edits: 0,
         })
         .collect();
     println!(
@@ -279,8 +283,9 @@ fn main() {
         .iter()
         .map(|document| document.local.lines.len())
         .sum();
+    let edits: i64 = documents.iter().map(|document| document.edits).sum();
     println!(
-        "checked: every document's text and last diagnostics equal the local copy and a fresh analysis ({lines} lines now)"
+        "checked: every document's text and last diagnostics equal the local copy and a fresh analysis ({lines} lines now, {edits} edits sent)"
     );
     let code = server.shutdown();
     assert_eq!(code, Some(0), "exit code after shutdown");

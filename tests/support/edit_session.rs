@@ -185,11 +185,11 @@ impl LineDocument {
         self.lines.splice(start_line..=end_line, pieces);
     }
 
-    /// A random position near the cursor (now and then anywhere), as (line, UTF-16 column) at a
+    /// A random position near the cursor (one in 50 anywhere), as (line, UTF-16 column) at a
     /// character boundary.
     fn position(&mut self, random: &mut Random) -> (usize, usize) {
         let line_count = self.lines.len();
-        let line = if random.one_in(10) {
+        let line = if random.one_in(50) {
             random.below(line_count)
         } else {
             (self.cursor + random.below(41))
@@ -278,22 +278,23 @@ impl LineDocument {
                 end: (line + 1, random.below(3)),
                 text: " ".to_string(),
             },
-            // Typing at a column past the line's end, or on a line past the end of the document.
+            // Typing on a line past the end of the document (rarely: the analysis then reads on from
+            // the cursor to the end), or at a column past the line's end.
+            18 if random.one_in(10) => Edit {
+                start: (self.lines.len() + 5, 0),
+                end: (self.lines.len() + 5, 0),
+                text: format!("N9{} X1", random.below(10)),
+            },
             18 => Edit {
                 start: (line, column + 1000),
                 end: (line, column + 1000),
                 text: " ; end".to_string(),
             },
             // A line typed over with a fresh block (keeps the document from filling up with junk).
-            19..=22 => Edit {
+            _ => Edit {
                 start: (line, 0),
                 end: (line, self.utf16_len(line)),
                 text: block(random, 10 * line),
-            },
-            _ => Edit {
-                start: (self.lines.len() + 5, 0),
-                end: (self.lines.len() + 5, 0),
-                text: format!("N9{} X1", random.below(10)),
             },
         };
         self.apply(&edit);
