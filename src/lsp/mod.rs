@@ -50,8 +50,8 @@ where
     O: AsyncWrite + Unpin + Send + 'static,
 {
     let open_texts = std::sync::Arc::new(open_texts::OpenTexts::default());
-    let input = framing::guard_input(input, std::sync::Arc::clone(&open_texts));
     let (outgoing, framework_output, output_tasks) = outgoing::start(output);
+    let input = framing::guard_input(input, outgoing.clone(), std::sync::Arc::clone(&open_texts));
     let (service, socket) =
         LspService::build(move |client| server::Backend::new(client, outgoing, open_texts))
             .custom_method(ext::DOCUMENT_TEXT_REQUEST, server::Backend::document_text)

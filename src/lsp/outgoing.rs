@@ -108,6 +108,11 @@ impl OutgoingSender {
         }
     }
 
+    /// Queues a message that is already written, header included.
+    pub fn send_message(&self, message: Vec<u8>) {
+        let _ = self.0.send(Frame::Message(message));
+    }
+
     /// Queues a message written in three pieces: `head` (with the header), `body` and `tail`.
     pub fn send_parts(&self, head: Vec<u8>, body: Arc<Vec<u8>>, tail: Vec<u8>) {
         let _ = self.0.send(Frame::Parts { head, body, tail });
