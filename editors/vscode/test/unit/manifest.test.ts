@@ -2,6 +2,7 @@ import assert from 'node:assert/strict';
 import * as fs from 'node:fs';
 import * as path from 'node:path';
 import { test } from 'node:test';
+import { FORMAT_COMMAND, RENUMBER_COMMAND } from '../../src/core/programCommands';
 import { serverSettings } from '../../src/core/settings';
 import { EXTENSION_ROOT } from './fixtures';
 
@@ -27,6 +28,21 @@ test('every contributed command is registered by the extension, and the other wa
   assert.deepEqual(registered, contributed);
   assert.ok(contributed.includes('sinumerik.showToolpath'));
   assert.equal(manifest.contributes.commands.find((c: { command: string }) => c.command === 'sinumerik.showToolpath').title, 'Show Toolpath');
+});
+
+test('renumbering and formatting are in the palette and the context menu of SINUMERIK programs', () => {
+  const commands = ['sinumerik.renumberBlocks', 'sinumerik.formatProgram'];
+  const titles = commands.map((id) => manifest.contributes.commands.find((c: { command: string }) => c.command === id)?.title);
+  assert.deepEqual(titles, ['Renumber blocks', 'Format program']);
+  for (const menu of ['commandPalette', 'editor/context']) {
+    for (const id of commands) {
+      const entry = manifest.contributes.menus[menu].find((item: { command: string }) => item.command === id);
+      assert.equal(entry?.when, 'editorLangId == sinumerik', `${id} in ${menu}`);
+    }
+  }
+  // The language client registers the server's command ids itself; a second registration would fail.
+  const contributed = manifest.contributes.commands.map((c: { command: string }) => c.command);
+  assert.ok(!contributed.includes(RENUMBER_COMMAND) && !contributed.includes(FORMAT_COMMAND));
 });
 
 test('the settings the server receives are the ones VS Code offers, with the same values', () => {
