@@ -1,0 +1,185 @@
+// The commands of the extension against the real server binary, as VS Code runs them: renumbering
+// and formatting through workspace/executeCommand with the requests the extension builds, the
+// server's workspace/applyEdit answered by applying the edit and sending the new text back (as the
+// language client does), and the navigation the editor offers on its own: go to definition and
+// completion.
+
+import assert from 'node:assert/strict';
+import { after, before, test } from 'node:test';
+import { formatRequest, renumberRequest, type ExecuteCommandParams } from '../../src/core/programCommands';
+import { applyTextEdits, editsFor, startServer, type TestServer, type TextEdit } from './harness';
+
+/** The client's copy of one open document, kept in step with the server like VS Code does. */
+interface ClientDocument {
+  uri: string;
+  text: string;
+  version: number;
+}
+
+const documents = new Map<string, ClientDocument>();
+/** Whether the client applies the next workspace edits (VS Code refuses one for a changed document). */
+let applyEdits = true;
+const appliedEdits: string[] = [];
+let server: TestServer;
+
+async function open(name: string, text: string): Promise<ClientDocument> {
+  const document = { uri: `file:///sinumerik-test/${name}`, text, version: 1 };
+  documents.set(document.uri, document);
+  await server.open(document.uri, text);
+  return document;
+}
+
+before(async () => {
+  server = await startServer((connection) => {
+    connection.onRequest('workspace/applyEdit', async (params: { edit: Parameters<typeof editsFor>[0] }) => {
+      if (!applyEdits) return { applied: false, failureReason: 'the test refuses the edit' };
+      for (const document of documents.values()) {
+        const edits = editsFor(params.edit, document.uri);
+        if (edits.length === 0) continue;
+        document.text = applyTextEdits(document.text, edits);
+        document.version += 1;
+        appliedEdits.push(document.uri);
+        await connection.sendNotification('textDocument/didChange', {
+          textDocument: { uri: document.uri, version: document.version },
+          contentChanges: [{ text: document.text }],
+        });
+      }
+      return { applied: true };
+    });
+  });
+});
+
+after(async () => {
+  await server?.stop();
+});
+
+function execute(request: ExecuteCommandParams): Promise<unknown> {
+  return server.connection.sendRequest('workspace/executeCommand', request);
+}
+
+const NUMBERED = ['N1 G90 G71 G17 G0 X0 Y0', 'N2 IF R1 > 0 GOTOF N9', 'N3 G1 X10 F100', 'N9 G0 X20', 'M30', ''].join('\n');
+
+test('renumbering through the extension\'s request edits the program, jumps included', async () => {
+  const document = await open('renumber.mpf', NUMBERED);
+  const answer = await execute(renumberRequest(document.uri, { start: 100, step: 5, mode: 'all' }));
+  assert.deepEqual(document.text.split('\n'), ['N100 G90 G71 G17 G0 X0 Y0', 'N105 IF R1 > 0 GOTOF N115', 'N110 G1 X10 F100', 'N115 G0 X20', 'N120 M30', '']);
+  assert.equal((answer as { applied: boolean }).applied, true);
+  assert.ok((answer as { edits: number }).edits > 0, JSON.stringify(answer));
+
+  // The server saw the applied edit: the same numbers again change nothing.
+  const again = await execute(renumberRequest(document.uri, { start: 100, step: 5, mode: 'all' }));
+  assert.deepEqual(again, { applied: false, edits: 0 });
+
+  const dropped = await execute(renumberRequest(document.uri, { start: 10, step: 10, mode: 'drop' }));
+  assert.equal((dropped as { applied: boolean }).applied, true);
+  assert.deepEqual(document.text.split('\n'), ['G90 G71 G17 G0 X0 Y0', 'IF R1 > 0 GOTOF N10', 'G1 X10 F100', 'N10 G0 X20', 'M30', '']);
+});
+
+test('a renumbering the server refuses comes back as an error with a message for the user', async () => {
+  const document = await open('refused.mpf', NUMBERED);
+  await assert.rejects(
+    execute(renumberRequest(document.uri, { start: 10, step: 0, mode: 'keep' })),
+    (error: { code?: number; message?: string }) => error.code === -32602 && /step/.test(error.message ?? ''),
+  );
+  await assert.rejects(
+    execute(renumberRequest('file:///sinumerik-test/not-open.mpf', { start: 10, step: 10, mode: 'keep' })),
+    (error: { code?: number }) => error.code === -32602,
+  );
+  assert.equal(document.text, NUMBERED, 'nothing was edited');
+});
+
+test('formatting through the extension\'s request edits the program; the formatting request gives the same text', async () => {
+  const text = 'n10 g0x10  y5\nN20 g1 x=ic( 5 ) f100\nm30\n';
+  const expected = 'N10 G0 X10 Y5\nN20 G1 X=IC(5) F100\nM30\n';
+  const viaRequest = await open('format-request.mpf', text);
+  const edits = (await server.connection.sendRequest('textDocument/formatting', {
+    textDocument: { uri: viaRequest.uri },
+    options: { tabSize: 4, insertSpaces: true },
+  })) as TextEdit[];
+  assert.equal(applyTextEdits(text, edits ?? []), expected, 'Format Document');
+
+  const document = await open('format.mpf', text);
+  const answer = await execute(formatRequest(document.uri));
+  assert.equal(document.text, expected);
+  assert.equal((answer as { applied: boolean }).applied, true);
+  assert.deepEqual(await execute(formatRequest(document.uri)), { applied: false, edits: 0 }, 'formatted text stays');
+
+  applyEdits = false;
+  try {
+    const refusing = await open('format-refused.mpf', text);
+    const refused = (await execute(formatRequest(refusing.uri))) as { applied: boolean; edits: number };
+    assert.equal(refused.applied, false, 'the client refused the edit');
+    assert.ok(refused.edits > 0);
+    assert.equal(refusing.text, text);
+  } finally {
+    applyEdits = true;
+  }
+});
+
+// Line 4 jumps forward to FINISH (line 7) and line 6 backward to START (line 1); DEPTH is declared on
+// line 0 and used on line 5.
+const NAVIGATION = [
+  'DEF REAL DEPTH',
+  'START:',
+  'N10 G90 G71 G17 G0 X0 Y0 Z10',
+  'DEPTH = -5',
+  'N20 IF R1 > 0 GOTOF FINISH',
+  'N30 G1 Z=DEPTH F100',
+  'N40 IF R2 > 0 GOTOB START',
+  'FINISH:',
+  'N50 G0 Z10',
+  'M30',
+  '',
+].join('\n');
+
+interface Location {
+  uri: string;
+  range: { start: { line: number; character: number } };
+}
+
+async function definition(uri: string, line: number, character: number): Promise<Location[]> {
+  const answer = (await server.connection.sendRequest('textDocument/definition', {
+    textDocument: { uri },
+    position: { line, character },
+  })) as Location | Location[] | { targetUri: string; targetSelectionRange: Location['range'] }[] | null;
+  const list = answer === null ? [] : Array.isArray(answer) ? answer : [answer];
+  return list.map((item) => ('targetUri' in item ? { uri: item.targetUri, range: item.targetSelectionRange } : item));
+}
+
+test('go to definition finds the label of a jump and the DEF of a variable', async () => {
+  const document = await open('navigation.mpf', NAVIGATION);
+  const lines = NAVIGATION.split('\n');
+  const finish = await definition(document.uri, 4, lines[4].indexOf('FINISH') + 2);
+  assert.deepEqual(finish.map((l) => [l.uri, l.range.start.line]), [[document.uri, 7]]);
+  const start = await definition(document.uri, 6, lines[6].indexOf('START') + 1);
+  assert.deepEqual(start.map((l) => [l.uri, l.range.start.line]), [[document.uri, 1]]);
+  const depth = await definition(document.uri, 5, lines[5].indexOf('DEPTH') + 1);
+  assert.deepEqual(depth.map((l) => [l.uri, l.range.start.line, l.range.start.character]), [[document.uri, 0, lines[0].indexOf('DEPTH')]]);
+});
+
+interface CompletionItem {
+  label: string;
+  detail?: string;
+}
+
+async function completion(uri: string, line: number, character: number): Promise<CompletionItem[]> {
+  const answer = (await server.connection.sendRequest('textDocument/completion', {
+    textDocument: { uri },
+    position: { line, character },
+  })) as CompletionItem[] | { items: CompletionItem[] } | null;
+  return answer === null ? [] : Array.isArray(answer) ? answer : answer.items;
+}
+
+test('completion offers the labels a jump can reach and G functions with their group', async () => {
+  const document = await open('completion.mpf', NAVIGATION);
+  const lines = NAVIGATION.split('\n');
+  const forward = await completion(document.uri, 4, lines[4].indexOf('FINISH'));
+  assert.deepEqual(forward.map((item) => item.label), ['FINISH'], 'GOTOF reaches only the labels below');
+  const backward = await completion(document.uri, 6, lines[6].indexOf('START'));
+  assert.deepEqual(backward.map((item) => item.label), ['START'], 'GOTOB reaches only the labels above');
+  const gCodes = await completion(document.uri, 5, 'N30 G1'.length);
+  const g17 = gCodes.find((item) => item.label === 'G17');
+  assert.ok(g17, `G17 among ${gCodes.map((item) => item.label).join(' ')}`);
+  assert.match(g17.detail ?? '', /group 6/i);
+  assert.ok(!gCodes.some((item) => item.label === 'G0'), 'only what starts with the typed G1');
+});

@@ -1,0 +1,122 @@
+// The real server binary (SINUMERIK_LSP_BIN, default ../../target/release/sinumerik-lsp) over stdio,
+// initialized the way vscode-languageclient does it: the settings as initializationOptions and as
+// the answer to workspace/configuration, and the client capabilities the tests rely on.
+
+import assert from 'node:assert/strict';
+import { spawn, type ChildProcess } from 'node:child_process';
+import * as fs from 'node:fs';
+import * as path from 'node:path';
+import { pathToFileURL } from 'node:url';
+import { createMessageConnection, StreamMessageReader, StreamMessageWriter, type MessageConnection } from 'vscode-jsonrpc/node';
+import { serverSettings, type ServerSettings } from '../../src/core/settings';
+import { EXTENSION_ROOT } from '../unit/fixtures';
+
+export const SERVER_BINARY = process.env.SINUMERIK_LSP_BIN ?? path.resolve(EXTENSION_ROOT, '..', '..', 'target', 'release', 'sinumerik-lsp');
+
+export interface TestServer {
+  connection: MessageConnection;
+  /** The server's answer to initialize. */
+  initialized: { capabilities: Record<string, unknown> };
+  /** The last diagnostics published per URI. */
+  diagnostics: Map<string, unknown[]>;
+  /** The settings answered to workspace/configuration; tests change them. */
+  settings: ServerSettings;
+  open(uri: string, text: string): Promise<void>;
+  stop(): Promise<void>;
+}
+
+/**
+ * Starts the server. `register` adds the test's own request handlers (workspace/applyEdit, ...)
+ * before the connection listens.
+ */
+export async function startServer(register: (connection: MessageConnection) => void = () => undefined): Promise<TestServer> {
+  assert.ok(fs.existsSync(SERVER_BINARY), `no server binary at ${SERVER_BINARY}: build it with cargo build --release, or set SINUMERIK_LSP_BIN`);
+  const child: ChildProcess = spawn(SERVER_BINARY, ['serve'], { stdio: ['pipe', 'pipe', 'inherit'] });
+  const connection = createMessageConnection(new StreamMessageReader(child.stdout!), new StreamMessageWriter(child.stdin!));
+  const diagnostics = new Map<string, unknown[]>();
+  const server = { settings: serverSettings(() => undefined) } as TestServer;
+  // What vscode-languageclient answers for workspace/configuration: the section from the settings.
+  connection.onRequest('workspace/configuration', (params: { items: { section?: string }[] }) =>
+    params.items.map((item) => (item.section === 'sinumerik' ? server.settings : null)),
+  );
+  connection.onRequest('workspace/inlayHint/refresh', () => null);
+  connection.onRequest('workspace/semanticTokens/refresh', () => null);
+  connection.onRequest('client/registerCapability', () => null);
+  connection.onRequest('window/workDoneProgress/create', () => null);
+  connection.onNotification('$/progress', () => undefined);
+  connection.onNotification('textDocument/publishDiagnostics', (params: { uri: string; diagnostics: unknown[] }) => {
+    diagnostics.set(params.uri, params.diagnostics);
+  });
+  register(connection);
+  connection.listen();
+  const initialized = (await connection.sendRequest('initialize', {
+    processId: process.pid,
+    rootUri: pathToFileURL(EXTENSION_ROOT).toString(),
+    capabilities: {
+      workspace: {
+        configuration: true,
+        applyEdit: true,
+        workspaceEdit: { documentChanges: true },
+        didChangeConfiguration: { dynamicRegistration: true },
+        inlayHint: { refreshSupport: true },
+      },
+      window: { workDoneProgress: true },
+      textDocument: {
+        inlayHint: {},
+        hover: { contentFormat: ['markdown', 'plaintext'] },
+        completion: { completionItem: { snippetSupport: true } },
+      },
+    },
+    initializationOptions: server.settings,
+  })) as TestServer['initialized'];
+  await connection.sendNotification('initialized', {});
+  return Object.assign(server, {
+    connection,
+    initialized,
+    diagnostics,
+    open: (uri: string, text: string) =>
+      connection.sendNotification('textDocument/didOpen', { textDocument: { uri, languageId: 'sinumerik', version: 1, text } }),
+    stop: async () => {
+      await connection.sendRequest('shutdown').catch(() => undefined);
+      await connection.sendNotification('exit').catch(() => undefined);
+      connection.dispose();
+      child.kill();
+    },
+  });
+}
+
+interface Position {
+  line: number;
+  character: number;
+}
+
+export interface TextEdit {
+  range: { start: Position; end: Position };
+  newText: string;
+}
+
+function offsetOf(text: string, position: Position): number {
+  let offset = 0;
+  for (let line = 0; line < position.line; line++) {
+    const next = text.indexOf('\n', offset);
+    if (next < 0) return text.length;
+    offset = next + 1;
+  }
+  const lineEnd = text.indexOf('\n', offset);
+  return Math.min(offset + position.character, lineEnd < 0 ? text.length : lineEnd);
+}
+
+/** `text` with `edits` applied as the protocol defines them: all ranges refer to the original text. */
+export function applyTextEdits(text: string, edits: TextEdit[]): string {
+  const located = edits.map((edit) => ({ start: offsetOf(text, edit.range.start), end: offsetOf(text, edit.range.end), newText: edit.newText }));
+  located.sort((a, b) => b.start - a.start || b.end - a.end);
+  for (const edit of located) text = text.slice(0, edit.start) + edit.newText + text.slice(edit.end);
+  return text;
+}
+
+/** The edits of a WorkspaceEdit for `uri`, from `changes` or `documentChanges`. */
+export function editsFor(edit: { changes?: Record<string, TextEdit[]>; documentChanges?: { textDocument: { uri: string }; edits: TextEdit[] }[] }, uri: string): TextEdit[] {
+  const fromChanges = edit.changes?.[uri] ?? [];
+  const fromDocumentChanges = (edit.documentChanges ?? []).filter((change) => change.textDocument?.uri === uri).flatMap((change) => change.edits);
+  return [...fromChanges, ...fromDocumentChanges];
+}
