@@ -290,7 +290,7 @@ local function run()
       'answer ' .. vim.inspect(refused) .. ', error ' .. tostring(problem)
   end)
 
-  check(':SinumerikFormat normalises spacing and case', function()
+  check(':SinumerikFormat normalises spacing and case, and one undo takes it back', function()
     local bufnr, attached = scratch('format.mpf', { 'n10 g0x10  y5', 'N20 g1 x=ic( 5 ) f100', 'm30' })
     if not attached then
       return false, 'no client for the scratch buffer'
@@ -300,8 +300,13 @@ local function run()
       return false, problem
     end
     local lines = vim.api.nvim_buf_get_lines(bufnr, 0, -1, false)
-    return vim.deep_equal(lines, { 'N10 G0 X10 Y5', 'N20 G1 X=IC(5) F100', 'M30' }) and result.applied == true,
-      table.concat(lines, ' | ') .. ' ' .. vim.inspect(result)
+    if not (vim.deep_equal(lines, { 'N10 G0 X10 Y5', 'N20 G1 X=IC(5) F100', 'M30' }) and result.applied == true) then
+      return false, table.concat(lines, ' | ') .. ' ' .. vim.inspect(result)
+    end
+    -- The whole edit is one undo step.
+    vim.cmd('undo')
+    local undone = vim.api.nvim_buf_get_lines(bufnr, 0, -1, false)
+    return vim.deep_equal(undone, { 'n10 g0x10  y5', 'N20 g1 x=ic( 5 ) f100', 'm30' }), 'after one undo: ' .. table.concat(undone, ' | ')
   end)
 
   -- Line 4 (0-based) jumps forward to FINISH on line 7, line 6 backward to START on line 1.
@@ -347,7 +352,7 @@ local function run()
     return vim.deep_equal(found, { 7, 1, 0 }), vim.inspect(found)
   end)
 
-  check('completion offers the labels a jump reaches and G functions with their group', function()
+  check('completion (omnifunc) offers the labels a jump reaches and G functions with their group', function()
     local function labels(answer)
       local items = answer and (answer.items or answer) or {}
       local names = {}
@@ -367,7 +372,8 @@ local function run()
     end
     local ok = vim.deep_equal(forward, { 'FINISH' }) and vim.deep_equal(backward, { 'START' })
       and g17 ~= nil and (g17.detail or ''):find('group 6', 1, true) ~= nil
-    return ok, vim.inspect({ forward = forward, backward = backward, g17 = g17 })
+      and vim.bo[nav].omnifunc == 'v:lua.vim.lsp.omnifunc'
+    return ok, vim.inspect({ forward = forward, backward = backward, g17 = g17, omnifunc = vim.bo[nav].omnifunc })
   end)
 end
 

@@ -285,8 +285,12 @@ function M.format(bufnr, done)
   rewrite(bufnr, 'formatting', FORMAT_COMMAND, {}, done)
 end
 
---- The buffer-local commands of a SINUMERIK buffer.
-function M.create_buffer_commands(bufnr)
+--- The buffer-local commands of a SINUMERIK buffer, and completion with <C-x><C-o> from the server
+--- (Neovim 0.7 does not set 'omnifunc' for LSP buffers itself; one set by the user stays).
+function M.prepare_buffer(bufnr)
+  if vim.bo[bufnr].omnifunc == '' then
+    vim.bo[bufnr].omnifunc = 'v:lua.vim.lsp.omnifunc'
+  end
   vim.api.nvim_buf_create_user_command(bufnr, 'SinumerikRenumber', function(command)
     local options, problem = M.renumber_options(command.fargs)
     if not options then
@@ -313,7 +317,7 @@ function M.setup(options)
     group = group,
     pattern = 'sinumerik',
     callback = function(args)
-      M.create_buffer_commands(args.buf)
+      M.prepare_buffer(args.buf)
       M.start(args.buf)
     end,
   })
@@ -323,7 +327,7 @@ function M.setup(options)
   -- Buffers that were opened before setup.
   for _, buf in ipairs(vim.api.nvim_list_bufs()) do
     if vim.api.nvim_buf_is_loaded(buf) and vim.bo[buf].filetype == 'sinumerik' then
-      M.create_buffer_commands(buf)
+      M.prepare_buffer(buf)
       M.start(buf)
     end
   end
