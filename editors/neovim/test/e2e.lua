@@ -201,6 +201,8 @@ local function run()
     vim.cmd('hide edit ' .. vim.fn.fnameescape(folder .. '/' .. name))
     local bufnr = vim.api.nvim_get_current_buf()
     vim.api.nvim_buf_set_lines(bufnr, 0, -1, false, lines)
+    -- Closes the undo step of the text, as a user's next command would.
+    vim.cmd('let &undolevels = &undolevels')
     local attached = vim.wait(15000, function()
       return require('sinumerik').client(bufnr) ~= nil
     end, 20)
