@@ -26,13 +26,16 @@ mod log;
 mod numbers;
 mod outgoing;
 mod outline;
+mod rewrite_commands;
 mod server;
 mod settings;
 mod text_document;
 mod words;
+mod workspace_edit;
 
 pub use convert::PositionEncoding;
 pub use ext::{EndpointPreviewParams, ENDPOINT_PREVIEW_COMMAND};
+pub use rewrite_commands::{FORMAT_COMMAND, RENUMBER_COMMAND};
 pub use text_document::{apply_changes, DocumentText, LineChange, RopeLineChange, RopeLines};
 
 use tokio::io::{AsyncRead, AsyncWrite};

@@ -16,6 +16,7 @@ use crate::lsp::hover::hover;
 use crate::lsp::inlay::inlay_hints;
 use crate::lsp::log::HandlerTimer;
 use crate::lsp::outgoing::{Outgoing, OutgoingSender};
+use crate::lsp::rewrite_commands::{self, FORMAT_COMMAND, RENUMBER_COMMAND};
 use crate::lsp::settings::{machine_config_for, Settings};
 use crate::lsp::text_document::ChangeError;
 use serde_json::Value;
@@ -40,12 +41,14 @@ struct ClientInfo {
     encoding: Option<PositionEncoding>,
     pulls_configuration: bool,
     refreshes_inlay_hints: bool,
+    /// Whether workspace edits may carry document versions (`documentChanges`).
+    versioned_edits: bool,
     workspace_root: Option<PathBuf>,
 }
 
 /// The server's state, shared with the tasks it spawns.
 pub struct Shared {
-    client: Client,
+    pub(super) client: Client,
     documents: Documents,
     settings: Mutex<Settings>,
     info: Mutex<ClientInfo>,
@@ -177,7 +180,7 @@ impl Backend {
 }
 
 impl Shared {
-    fn encoding(&self) -> PositionEncoding {
+    pub(super) fn encoding(&self) -> PositionEncoding {
         lock(&self.info).encoding.unwrap_or(PositionEncoding::Utf16)
     }
 
@@ -188,7 +191,12 @@ impl Shared {
         }
     }
 
-    fn warn(&self, message: String) {
+    /// Whether the client takes workspace edits with document versions.
+    pub(super) fn versioned_edits(&self) -> bool {
+        lock(&self.info).versioned_edits
+    }
+
+    pub(super) fn warn(&self, message: String) {
         self.outgoing.log_warning(message);
     }
 
@@ -253,7 +261,7 @@ impl Shared {
 
     /// The open document, the revision it had when the request came, and a job that answers the
     /// request on the up-to-date analysis in the blocking pool.
-    async fn on_analysis<T: Send + 'static>(
+    pub(super) async fn on_analysis<T: Send + 'static>(
         &self,
         uri: &Uri,
         job: impl FnOnce(&Analysed) -> T + Send + 'static,
@@ -309,6 +317,10 @@ impl LanguageServer for Backend {
                 .and_then(|workspace| workspace.inlay_hint.as_ref())
                 .and_then(|inlay| inlay.refresh_support)
                 .unwrap_or(false),
+            versioned_edits: workspace
+                .and_then(|workspace| workspace.workspace_edit.as_ref())
+                .and_then(|edit| edit.document_changes)
+                .unwrap_or(false),
             workspace_root,
         };
         if let Some(options) = &params.initialization_options {
@@ -336,8 +348,14 @@ impl LanguageServer for Backend {
                 inlay_hint_provider: Some(OneOf::Left(true)),
                 document_symbol_provider: Some(OneOf::Left(true)),
                 folding_range_provider: Some(FoldingRangeProviderCapability::Simple(true)),
+                document_formatting_provider: Some(OneOf::Left(true)),
+                document_range_formatting_provider: Some(OneOf::Left(true)),
                 execute_command_provider: Some(ExecuteCommandOptions {
-                    commands: vec![ENDPOINT_PREVIEW_COMMAND.to_string()],
+                    commands: vec![
+                        ENDPOINT_PREVIEW_COMMAND.to_string(),
+                        RENUMBER_COMMAND.to_string(),
+                        FORMAT_COMMAND.to_string(),
+                    ],
                     ..ExecuteCommandOptions::default()
                 }),
                 ..ServerCapabilities::default()
@@ -473,6 +491,32 @@ impl LanguageServer for Backend {
         .await
     }
 
+    async fn formatting(&self, params: DocumentFormattingParams) -> Result<Option<Vec<TextEdit>>> {
+        let _timer = HandlerTimer::new("textDocument/formatting", &self.outgoing);
+        let encoding = self.encoding();
+        self.on_analysis(&params.text_document.uri, move |analysed| {
+            Some(rewrite_commands::formatting_edits(analysed, None, encoding))
+        })
+        .await
+    }
+
+    async fn range_formatting(
+        &self,
+        params: DocumentRangeFormattingParams,
+    ) -> Result<Option<Vec<TextEdit>>> {
+        let _timer = HandlerTimer::new("textDocument/rangeFormatting", &self.outgoing);
+        let encoding = self.encoding();
+        let range = params.range;
+        self.on_analysis(&params.text_document.uri, move |analysed| {
+            Some(rewrite_commands::formatting_edits(
+                analysed,
+                Some(range),
+                encoding,
+            ))
+        })
+        .await
+    }
+
     async fn inlay_hint(&self, params: InlayHintParams) -> Result<Option<Vec<InlayHint>>> {
         let _timer = HandlerTimer::new("textDocument/inlayHint", &self.outgoing);
         let mode = lock(&self.settings).inlay_hints;
@@ -497,6 +541,10 @@ impl LanguageServer for Backend {
 
     async fn execute_command(&self, params: ExecuteCommandParams) -> Result<Option<Value>> {
         let _timer = HandlerTimer::new("workspace/executeCommand", &self.outgoing);
+        if rewrite_commands::is_rewrite_command(&params.command) {
+            return rewrite_commands::execute(&self.shared, &params.command, &params.arguments)
+                .await;
+        }
         if params.command != ENDPOINT_PREVIEW_COMMAND {
             return Err(Error::invalid_params(format!(
                 "unknown command {}",
