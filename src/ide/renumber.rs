@@ -258,7 +258,10 @@ mod tests {
         let source = crate::analysis::document::TextLines::new(text);
         let edits = renumber(&source, &MachineConfig::default(), options).unwrap();
         assert_eq!(edits, Vec::new());
-        let shifted = RenumberOptions { start: 2, ..options };
+        let shifted = RenumberOptions {
+            start: 2,
+            ..options
+        };
         let edits = renumber(&source, &MachineConfig::default(), shifted).unwrap();
         assert_eq!(edits.len(), 5, "four numbers and the jump: {edits:?}");
     }
