@@ -1,13 +1,14 @@
 // The commands of the extension against the real server binary, as VS Code runs them: renumbering
 // and formatting through workspace/executeCommand with the requests the extension builds, the
 // server's workspace/applyEdit answered by applying the edit and sending the new text back (as the
-// language client does), and the navigation the editor offers on its own: go to definition and
-// completion.
+// language client does), and what the editor asks on its own: go to definition, completion and
+// semantic tokens, read through the legend and the scopes of package.json.
 
 import assert from 'node:assert/strict';
 import { after, before, test } from 'node:test';
 import { formatRequest, renumberRequest, type ExecuteCommandParams } from '../../src/core/programCommands';
-import { applyTextEdits, editsFor, startServer, type TestServer, type TextEdit } from './harness';
+import { KNOWN_TOKEN_MODIFIERS, KNOWN_TOKEN_TYPES, scopeOf, TOKEN_SCOPES } from '../unit/semanticLegend';
+import { applyTextEdits, decodeSemanticTokens, editsFor, startServer, type TestServer, type TextEdit } from './harness';
 
 /** The client's copy of one open document, kept in step with the server like VS Code does. */
 interface ClientDocument {
@@ -186,4 +187,57 @@ test('completion offers the labels a jump can reach and G functions with their g
   assert.ok(g17, `G17 among ${gCodes.map((item) => item.label).join(' ')}`);
   assert.match(g17.detail ?? '', /group 6/i);
   assert.ok(!gCodes.some((item) => item.label === 'G0'), 'only what starts with the typed G1');
+});
+
+interface Legend {
+  tokenTypes: string[];
+  tokenModifiers: string[];
+}
+
+test('every semantic token kind of the server is known to VS Code and has a scope', () => {
+  const provider = server.initialized.capabilities.semanticTokensProvider as { legend: Legend; range?: boolean } | undefined;
+  assert.ok(provider, 'the server offers semantic tokens');
+  assert.ok(provider.range, 'also for a range');
+  for (const type of provider.legend.tokenTypes) {
+    assert.ok(KNOWN_TOKEN_TYPES.has(type), `${type}: declared in package.json semanticTokenTypes`);
+    assert.ok(TOKEN_SCOPES[type], `${type}: mapped in package.json semanticTokenScopes`);
+  }
+  for (const modifier of provider.legend.tokenModifiers) {
+    assert.ok(KNOWN_TOKEN_MODIFIERS.has(modifier), `${modifier}: declared in package.json semanticTokenModifiers`);
+  }
+});
+
+test('semantic tokens give block numbers, G groups, axes, labels and variables their scopes', async () => {
+  const document = await open('tokens.mpf', NAVIGATION);
+  const lines = NAVIGATION.split('\n');
+  const legend = (server.initialized.capabilities.semanticTokensProvider as { legend: Legend }).legend;
+  const full = (await server.connection.sendRequest('textDocument/semanticTokens/full', { textDocument: { uri: document.uri } })) as { data: number[] };
+  const tokens = decodeSemanticTokens(full.data, legend);
+  const scopeAt = (line: number, word: string) => {
+    const character = lines[line].indexOf(word);
+    const token = tokens.find((t) => t.line === line && t.character <= character && character < t.character + t.length);
+    return token ? scopeOf(token.type, token.modifiers) : `no token at ${line}:${character}`;
+  };
+  assert.deepEqual(
+    [scopeAt(2, 'N10'), scopeAt(2, 'G90'), scopeAt(2, 'G17'), scopeAt(2, 'G0'), scopeAt(2, 'X0'), scopeAt(4, 'FINISH'), scopeAt(7, 'FINISH'), scopeAt(5, 'DEPTH'), scopeAt(0, 'DEPTH'), scopeAt(4, 'R1')],
+    [
+      'constant.other.block-number.sinumerik',
+      'keyword.other.g-code.distance.sinumerik',
+      'keyword.other.g-code.plane.sinumerik',
+      'keyword.other.g-code.motion.sinumerik',
+      'variable.other.axis.sinumerik',
+      'entity.name.label.sinumerik',
+      'entity.name.label.sinumerik',
+      'variable.other.name.sinumerik',
+      'variable.other.name.sinumerik',
+      'variable.parameter.r-parameter.sinumerik',
+    ],
+  );
+  const range = (await server.connection.sendRequest('textDocument/semanticTokens/range', {
+    textDocument: { uri: document.uri },
+    range: { start: { line: 4, character: 0 }, end: { line: 4, character: lines[4].length } },
+  })) as { data: number[] };
+  const inRange = decodeSemanticTokens(range.data, legend);
+  assert.ok(inRange.length > 0 && inRange.every((t) => t.line === 4), JSON.stringify(inRange));
+  assert.deepEqual(inRange, tokens.filter((t) => t.line === 4), 'the same tokens as in the whole document');
 });

@@ -120,3 +120,26 @@ export function editsFor(edit: { changes?: Record<string, TextEdit[]>; documentC
   const fromDocumentChanges = (edit.documentChanges ?? []).filter((change) => change.textDocument?.uri === uri).flatMap((change) => change.edits);
   return [...fromChanges, ...fromDocumentChanges];
 }
+
+export interface DecodedToken {
+  line: number;
+  character: number;
+  length: number;
+  type: string;
+  modifiers: string[];
+}
+
+/** The tokens of `data` (five numbers per token, line and start relative to the previous token). */
+export function decodeSemanticTokens(data: readonly number[], legend: { tokenTypes: string[]; tokenModifiers: string[] }): DecodedToken[] {
+  const tokens: DecodedToken[] = [];
+  let line = 0;
+  let character = 0;
+  for (let index = 0; index + 4 < data.length; index += 5) {
+    const [deltaLine, deltaStart, length, type, bits] = data.slice(index, index + 5);
+    line += deltaLine;
+    character = deltaLine === 0 ? character + deltaStart : deltaStart;
+    const modifiers = legend.tokenModifiers.filter((_, bit) => (bits >> bit) & 1);
+    tokens.push({ line, character, length, type: legend.tokenTypes[type] ?? `#${type}`, modifiers });
+  }
+  return tokens;
+}

@@ -4,6 +4,7 @@ import * as path from 'node:path';
 import { test } from 'node:test';
 import { FORMAT_COMMAND, RENUMBER_COMMAND } from '../../src/core/programCommands';
 import { serverSettings } from '../../src/core/settings';
+import { DECLARED_TOKEN_MODIFIERS, DECLARED_TOKEN_TYPES, KNOWN_TOKEN_MODIFIERS, KNOWN_TOKEN_TYPES, STANDARD_TOKEN_MODIFIERS, STANDARD_TOKEN_TYPES, TOKEN_SCOPES } from './semanticLegend';
 import { EXTENSION_ROOT } from './fixtures';
 
 const read = (file: string) => JSON.parse(fs.readFileSync(path.join(EXTENSION_ROOT, file), 'utf8'));
@@ -77,4 +78,40 @@ test('comments, folding and indentation follow the control structures', () => {
   for (const line of closes) assert.ok(end.test(line) && dedent.test(line), `closes: ${line}`);
   assert.ok(indent.test('ELSE') && dedent.test('N50 ELSE'), 'ELSE closes and opens');
   assert.ok(!end.test('ENDIFX=1') && !end.test('N10 X10'));
+});
+
+function grammarScopes(): Set<string> {
+  const names = new Set<string>();
+  const walk = (value: unknown): void => {
+    if (Array.isArray(value)) value.forEach(walk);
+    else if (typeof value === 'object' && value !== null) {
+      for (const [key, inner] of Object.entries(value)) {
+        if (key === 'name' && typeof inner === 'string') names.add(inner);
+        else walk(inner);
+      }
+    }
+  };
+  walk(read(manifest.contributes.grammars[0].path));
+  return names;
+}
+
+test('semantic token kinds are declared and mapped to the scopes the grammar gives the same words', () => {
+  for (const [selector, scopes] of Object.entries(TOKEN_SCOPES)) {
+    const [type, ...modifiers] = selector.split('.');
+    assert.ok(KNOWN_TOKEN_TYPES.has(type), `${selector}: the type is standard or declared`);
+    for (const modifier of modifiers) assert.ok(KNOWN_TOKEN_MODIFIERS.has(modifier), `${selector}: the modifier is standard or declared`);
+    assert.ok(scopes.length > 0 && scopes.every((scope) => /^(comment|constant|entity|invalid|keyword|storage|string|support|variable)\..*\.sinumerik$/.test(scope)), `${selector}: ${scopes}`);
+  }
+  for (const type of DECLARED_TOKEN_TYPES) {
+    assert.ok(!STANDARD_TOKEN_TYPES.has(type.id), `${type.id} is not declared twice`);
+    assert.ok(TOKEN_SCOPES[type.id], `${type.id} has a scope`);
+    if (type.superType) assert.ok(STANDARD_TOKEN_TYPES.has(type.superType), `${type.id}: super type ${type.superType}`);
+  }
+  for (const modifier of DECLARED_TOKEN_MODIFIERS) assert.ok(!STANDARD_TOKEN_MODIFIERS.has(modifier), modifier);
+  // The words the grammar colours too get its scopes, so that a theme shows them alike before the
+  // server answers and after.
+  const grammar = grammarScopes();
+  for (const type of ['comment', 'string', 'number', 'gcode', 'axis', 'address', 'modifier', 'variable', 'rParameter', 'systemVariable', 'label', 'blockNumber', 'function']) {
+    assert.ok(grammar.has(TOKEN_SCOPES[type]?.[0]), `${type}: ${TOKEN_SCOPES[type]} is a scope of the grammar`);
+  }
 });
