@@ -61,6 +61,9 @@ test('the settings the server receives are the ones VS Code offers, with the sam
     assert.equal(property.default, fallback, `${key}: same default`);
   }
   assert.ok(properties['sinumerik.configFile'] && properties['sinumerik.server.path']);
+  const folders = properties['sinumerik.cycleFolders'];
+  assert.deepEqual([folders.type, folders.items.type, folders.default], ['array', 'string', []]);
+  assert.deepEqual(serverSettings((k) => (k === 'cycleFolders' ? folders.default : undefined)).cycleFolders, []);
 });
 
 test('comments, folding and indentation follow the control structures', () => {
