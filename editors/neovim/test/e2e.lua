@@ -311,19 +311,9 @@ local function run()
     return vim.deep_equal(undone, { 'n10 g0x10  y5', 'N20 g1 x=ic( 5 ) f100', 'm30' }), 'after one undo: ' .. table.concat(undone, ' | ')
   end)
 
-  -- Line 4 (0-based) jumps forward to FINISH on line 7, line 6 backward to START on line 1.
-  local navigation = {
-    'DEF REAL DEPTH',
-    'START:',
-    'N10 G90 G71 G17 G0 X0 Y0 Z10',
-    'DEPTH = -5',
-    'N20 IF R1 > 0 GOTOF FINISH',
-    'N30 G1 Z=DEPTH F100',
-    'N40 IF R2 > 0 GOTOB START',
-    'FINISH:',
-    'N50 G0 Z10',
-    'M30',
-  }
+  -- The program both editors' tests navigate: line 4 (0-based) jumps forward to FINISH on line 7,
+  -- line 6 backward to START on line 1; DEPTH is declared on line 0 and used on line 5.
+  local navigation = vim.fn.readfile(repository .. '/fixtures/editors/navigation.mpf')
   local nav, nav_attached = scratch('navigation.mpf', navigation)
 
   local function request(method, line, character)

@@ -5,8 +5,11 @@
 // semantic tokens, read through the legend and the scopes of package.json.
 
 import assert from 'node:assert/strict';
+import * as fs from 'node:fs';
+import * as path from 'node:path';
 import { after, before, test } from 'node:test';
 import { formatRequest, renumberRequest, type ExecuteCommandParams } from '../../src/core/programCommands';
+import { EXTENSION_ROOT } from '../unit/fixtures';
 import { KNOWN_TOKEN_MODIFIERS, KNOWN_TOKEN_TYPES, scopeOf, TOKEN_SCOPES } from '../unit/semanticLegend';
 import { applyTextEdits, decodeSemanticTokens, editsFor, startServer, type TestServer, type TextEdit } from './harness';
 
@@ -121,21 +124,9 @@ test('formatting through the extension\'s request edits the program; the formatt
   }
 });
 
-// Line 4 jumps forward to FINISH (line 7) and line 6 backward to START (line 1); DEPTH is declared on
-// line 0 and used on line 5.
-const NAVIGATION = [
-  'DEF REAL DEPTH',
-  'START:',
-  'N10 G90 G71 G17 G0 X0 Y0 Z10',
-  'DEPTH = -5',
-  'N20 IF R1 > 0 GOTOF FINISH',
-  'N30 G1 Z=DEPTH F100',
-  'N40 IF R2 > 0 GOTOB START',
-  'FINISH:',
-  'N50 G0 Z10',
-  'M30',
-  '',
-].join('\n');
+// The program both editors' tests navigate: line 4 jumps forward to FINISH (line 7) and line 6
+// backward to START (line 1); DEPTH is declared on line 0 and used on line 5.
+const NAVIGATION = fs.readFileSync(path.join(EXTENSION_ROOT, '..', '..', 'fixtures', 'editors', 'navigation.mpf'), 'utf8');
 
 interface Location {
   uri: string;
