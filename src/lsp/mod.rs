@@ -14,7 +14,9 @@
 //! - `framing.rs`: drops malformed messages before they reach the framework's reader.
 
 mod code_action;
+mod completion;
 mod convert;
+mod cross_file;
 mod documents;
 mod endpoint_preview;
 mod ext;
@@ -23,14 +25,18 @@ mod gcode_help;
 mod hover;
 mod inlay;
 mod log;
+mod navigation;
 mod numbers;
 mod outgoing;
 mod outline;
 mod rewrite_commands;
+mod semantic;
 mod server;
 mod settings;
+mod signature;
 mod text_document;
 mod words;
+mod workspace;
 mod workspace_edit;
 
 pub use convert::PositionEncoding;

@@ -25,6 +25,8 @@ pub struct Settings {
     pub inlay_hints: InlayHintMode,
     /// One `sinumerik.toml` for every document instead of the nearest one (like `check --config`).
     pub config_file: Option<PathBuf>,
+    /// Folders of cycles and subprograms outside the workspace folders that the index reads too.
+    pub cycle_folders: Vec<PathBuf>,
 }
 
 impl Settings {
@@ -53,6 +55,14 @@ impl Settings {
                         "setting `configFile`: expected a path or null, not {other}"
                     )),
                 },
+                "cycleFolders" => {
+                    match serde_json::from_value::<Option<Vec<PathBuf>>>(value.clone()) {
+                        Ok(folders) => self.cycle_folders = folders.unwrap_or_default(),
+                        Err(error) => problems.push(format!(
+                            "setting `cycleFolders`: expected a list of paths: {error}"
+                        )),
+                    }
+                }
                 // Clients send their whole section; keys of other versions are not an error.
                 _ => {}
             }
