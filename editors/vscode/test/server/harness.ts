@@ -35,6 +35,12 @@ export async function startServer(register: (connection: MessageConnection) => v
   const connection = createMessageConnection(new StreamMessageReader(child.stdout!), new StreamMessageWriter(child.stdin!));
   const diagnostics = new Map<string, unknown[]>();
   const server = { settings: serverSettings(() => undefined) } as TestServer;
+  let stopping = false;
+  // A server that ends early fails the requests still waiting for it instead of leaving them hanging.
+  child.on('exit', (code, signal) => {
+    if (!stopping) process.stderr.write(`the server ended early (exit code ${code}, signal ${signal})\n`);
+    connection.dispose();
+  });
   // What vscode-languageclient answers for workspace/configuration: the section from the settings.
   connection.onRequest('workspace/configuration', (params: { items: { section?: string }[] }) =>
     params.items.map((item) => (item.section === 'sinumerik' ? server.settings : null)),
@@ -77,7 +83,9 @@ export async function startServer(register: (connection: MessageConnection) => v
     open: (uri: string, text: string) =>
       connection.sendNotification('textDocument/didOpen', { textDocument: { uri, languageId: 'sinumerik', version: 1, text } }),
     stop: async () => {
-      await connection.sendRequest('shutdown').catch(() => undefined);
+      stopping = true;
+      const shutdown = connection.sendRequest('shutdown').catch(() => undefined);
+      await Promise.race([shutdown, new Promise((resolve) => setTimeout(resolve, 5000).unref())]);
       await connection.sendNotification('exit').catch(() => undefined);
       connection.dispose();
       child.kill();
