@@ -11,7 +11,7 @@ import { after, before, test } from 'node:test';
 import { formatRequest, renumberRequest, type ExecuteCommandParams } from '../../src/core/programCommands';
 import { EXTENSION_ROOT } from '../unit/fixtures';
 import { KNOWN_TOKEN_MODIFIERS, KNOWN_TOKEN_TYPES, scopeOf, TOKEN_SCOPES } from '../unit/semanticLegend';
-import { applyTextEdits, decodeSemanticTokens, editsFor, startServer, type TestServer, type TextEdit } from './harness';
+import { applyTextEdits, decodeSemanticTokens, definition, editsFor, startServer, type TestServer, type TextEdit } from './harness';
 
 /** The client's copy of one open document, kept in step with the server like VS Code does. */
 interface ClientDocument {
@@ -34,7 +34,7 @@ async function open(name: string, text: string): Promise<ClientDocument> {
 }
 
 before(async () => {
-  server = await startServer((connection) => {
+  const register = (connection: TestServer['connection']) => {
     connection.onRequest('workspace/applyEdit', async (params: { edit: Parameters<typeof editsFor>[0] }) => {
       if (!applyEdits) return { applied: false, failureReason: 'the test refuses the edit' };
       for (const document of documents.values()) {
@@ -50,7 +50,8 @@ before(async () => {
       }
       return { applied: true };
     });
-  });
+  };
+  server = await startServer({ register });
 });
 
 after(async () => {
@@ -128,28 +129,14 @@ test('formatting through the extension\'s request edits the program; the formatt
 // backward to START (line 1); DEPTH is declared on line 0 and used on line 5.
 const NAVIGATION = fs.readFileSync(path.join(EXTENSION_ROOT, '..', '..', 'fixtures', 'editors', 'navigation.mpf'), 'utf8');
 
-interface Location {
-  uri: string;
-  range: { start: { line: number; character: number } };
-}
-
-async function definition(uri: string, line: number, character: number): Promise<Location[]> {
-  const answer = (await server.connection.sendRequest('textDocument/definition', {
-    textDocument: { uri },
-    position: { line, character },
-  })) as Location | Location[] | { targetUri: string; targetSelectionRange: Location['range'] }[] | null;
-  const list = answer === null ? [] : Array.isArray(answer) ? answer : [answer];
-  return list.map((item) => ('targetUri' in item ? { uri: item.targetUri, range: item.targetSelectionRange } : item));
-}
-
 test('go to definition finds the label of a jump and the DEF of a variable', async () => {
   const document = await open('navigation.mpf', NAVIGATION);
   const lines = NAVIGATION.split('\n');
-  const finish = await definition(document.uri, 4, lines[4].indexOf('FINISH') + 2);
+  const finish = await definition(server, document.uri, 4, lines[4].indexOf('FINISH') + 2);
   assert.deepEqual(finish.map((l) => [l.uri, l.range.start.line]), [[document.uri, 7]]);
-  const start = await definition(document.uri, 6, lines[6].indexOf('START') + 1);
+  const start = await definition(server, document.uri, 6, lines[6].indexOf('START') + 1);
   assert.deepEqual(start.map((l) => [l.uri, l.range.start.line]), [[document.uri, 1]]);
-  const depth = await definition(document.uri, 5, lines[5].indexOf('DEPTH') + 1);
+  const depth = await definition(server, document.uri, 5, lines[5].indexOf('DEPTH') + 1);
   assert.deepEqual(depth.map((l) => [l.uri, l.range.start.line, l.range.start.character]), [[document.uri, 0, lines[0].indexOf('DEPTH')]]);
 });
 

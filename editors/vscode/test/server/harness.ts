@@ -25,16 +25,21 @@ export interface TestServer {
   stop(): Promise<void>;
 }
 
-/**
- * Starts the server. `register` adds the test's own request handlers (workspace/applyEdit, ...)
- * before the connection listens.
- */
-export async function startServer(register: (connection: MessageConnection) => void = () => undefined): Promise<TestServer> {
+export interface ServerOptions {
+  /** Adds the test's own handlers (workspace/applyEdit, $/progress, ...) before the connection listens. */
+  register?: (connection: MessageConnection) => void;
+  /** The workspace folder; default the extension's folder. */
+  rootPath?: string;
+  /** The settings at start; default the extension's defaults. */
+  settings?: ServerSettings;
+}
+
+export async function startServer(options: ServerOptions = {}): Promise<TestServer> {
   assert.ok(fs.existsSync(SERVER_BINARY), `no server binary at ${SERVER_BINARY}: build it with cargo build --release, or set SINUMERIK_LSP_BIN`);
   const child: ChildProcess = spawn(SERVER_BINARY, ['serve'], { stdio: ['pipe', 'pipe', 'inherit'] });
   const connection = createMessageConnection(new StreamMessageReader(child.stdout!), new StreamMessageWriter(child.stdin!));
   const diagnostics = new Map<string, unknown[]>();
-  const server = { settings: serverSettings(() => undefined) } as TestServer;
+  const server = { settings: options.settings ?? serverSettings(() => undefined) } as TestServer;
   let stopping = false;
   // A server that ends early fails the requests still waiting for it instead of leaving them hanging.
   child.on('exit', (code, signal) => {
@@ -53,11 +58,11 @@ export async function startServer(register: (connection: MessageConnection) => v
   connection.onNotification('textDocument/publishDiagnostics', (params: { uri: string; diagnostics: unknown[] }) => {
     diagnostics.set(params.uri, params.diagnostics);
   });
-  register(connection);
+  options.register?.(connection);
   connection.listen();
   const initialized = (await connection.sendRequest('initialize', {
     processId: process.pid,
-    rootUri: pathToFileURL(EXTENSION_ROOT).toString(),
+    rootUri: pathToFileURL(options.rootPath ?? EXTENSION_ROOT).toString(),
     capabilities: {
       workspace: {
         configuration: true,
@@ -150,4 +155,19 @@ export function decodeSemanticTokens(data: readonly number[], legend: { tokenTyp
     tokens.push({ line, character, length, type: legend.tokenTypes[type] ?? `#${type}`, modifiers });
   }
   return tokens;
+}
+
+export interface Location {
+  uri: string;
+  range: { start: { line: number; character: number } };
+}
+
+/** The locations of go to definition, whichever form the server answers in. */
+export async function definition(server: TestServer, uri: string, line: number, character: number): Promise<Location[]> {
+  const answer = (await server.connection.sendRequest('textDocument/definition', {
+    textDocument: { uri },
+    position: { line, character },
+  })) as Location | Location[] | { targetUri: string; targetSelectionRange: Location['range'] }[] | null;
+  const list = answer === null ? [] : Array.isArray(answer) ? answer : [answer];
+  return list.map((item) => ('targetUri' in item ? { uri: item.targetUri, range: item.targetSelectionRange } : item));
 }
