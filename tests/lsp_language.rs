@@ -357,6 +357,16 @@ async fn rename_edits_every_occurrence_and_refuses_bad_names() {
     client.shutdown().await;
 }
 
+async fn complete_at(client: &mut TestClient, uri: &str, line: usize, character: u32) -> Value {
+    client
+        .request(
+            "textDocument/completion",
+            json!({"textDocument": {"uri": uri}, "position": {"line": line, "character": character}}),
+        )
+        .await
+        .expect("completion succeeds")
+}
+
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
 async fn completion_signature_help_and_hover_documentation() {
     let workspace = Workspace::write("completion");
@@ -371,13 +381,7 @@ async fn completion_signature_help_and_hover_documentation() {
             json!([{"range": {"start": {"line": line_count, "character": 0}, "end": {"line": line_count, "character": 0}}, "text": "N80 CYC"}]),
         )
         .await;
-    let answer = client
-        .request(
-            "textDocument/completion",
-            json!({"textDocument": {"uri": main}, "position": {"line": line_count, "character": 7}}),
-        )
-        .await
-        .unwrap();
+    let answer = complete_at(&mut client, &main, line_count, 7).await;
     let items = answer.as_array().unwrap();
     let cycle81 = items
         .iter()
@@ -403,13 +407,7 @@ async fn completion_signature_help_and_hover_documentation() {
             json!([{"range": {"start": {"line": line_count, "character": 4}, "end": {"line": line_count, "character": 7}}, "text": "G6"}]),
         )
         .await;
-    let answer = client
-        .request(
-            "textDocument/completion",
-            json!({"textDocument": {"uri": main}, "position": {"line": line_count, "character": 6}}),
-        )
-        .await
-        .unwrap();
+    let answer = complete_at(&mut client, &main, line_count, 6).await;
     let g64 = answer
         .as_array()
         .unwrap()

@@ -4,10 +4,10 @@
 //! every keystroke, and rebuilding the symbol table of a large program each time would cost more
 //! than a label list that lags by 300 ms.
 
-use crate::analysis::document::LineSource;
 use crate::ide::completion::{completion, CompletionKind};
-use crate::lsp::convert::{character_to_byte, PositionEncoding};
+use crate::lsp::convert::PositionEncoding;
 use crate::lsp::documents::Analysed;
+use crate::lsp::navigation::line_at;
 use crate::lsp::server::Shared;
 use tower_lsp_server::ls_types::{
     CompletionItem, CompletionItemKind, CompletionItemLabelDetails, Documentation,
@@ -42,13 +42,9 @@ pub fn completion_items(
     encoding: PositionEncoding,
 ) -> Vec<CompletionItem> {
     let id = shared.workspace.ensure_present(uri, analysed);
-    let line = position.line as usize;
-    let lines = analysed.lines();
-    if line >= lines.line_count() {
+    let Some((line, text, byte)) = line_at(analysed, position, encoding) else {
         return Vec::new();
-    }
-    let text = lines.line(line);
-    let byte = character_to_byte(&text, position.character, encoding);
+    };
     let state = shared.workspace.read();
     completion(
         &state.index,

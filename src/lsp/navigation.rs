@@ -32,14 +32,30 @@ impl Cursor {
         position: Position,
         encoding: PositionEncoding,
     ) -> Cursor {
-        let line = position.line as usize;
-        let text = line_text(analysed, line);
-        Cursor {
-            id,
-            line,
-            byte: character_to_byte(&text, position.character, encoding),
-        }
+        let (line, _, byte) = line_at(analysed, position, encoding).unwrap_or((
+            position.line as usize,
+            String::new(),
+            0,
+        ));
+        Cursor { id, line, byte }
     }
+}
+
+/// The line of a position, its text and the position's byte offset in it; `None` past the end.
+pub fn line_at(
+    analysed: &Analysed,
+    position: Position,
+    encoding: PositionEncoding,
+) -> Option<(usize, String, usize)> {
+    use crate::analysis::document::LineSource;
+    let line = position.line as usize;
+    let lines = analysed.lines();
+    if line >= lines.line_count() {
+        return None;
+    }
+    let text = lines.line(line).into_owned();
+    let byte = character_to_byte(&text, position.character, encoding);
+    Some((line, text, byte))
 }
 
 /// The text of line `line` of the analysed document (empty past the end).

@@ -1,10 +1,10 @@
 //! Signature help inside the parentheses of a call: the protocol's form of `ide::signature_help`
 //! (standard cycles from the reference §8.7, `PROC` headers of the workspace, `EXTERN` declarations).
 
-use crate::analysis::document::LineSource;
 use crate::ide::signature_help::signature_help;
-use crate::lsp::convert::{byte_to_character, character_to_byte, PositionEncoding};
+use crate::lsp::convert::{byte_to_character, PositionEncoding};
 use crate::lsp::documents::Analysed;
+use crate::lsp::navigation::line_at;
 use crate::lsp::server::Shared;
 use tower_lsp_server::ls_types::{
     Documentation, ParameterInformation, ParameterLabel, Position, SignatureHelp,
@@ -23,13 +23,9 @@ pub fn signature(
     encoding: PositionEncoding,
 ) -> Option<SignatureHelp> {
     let id = shared.workspace.ensure_present(uri, analysed);
-    let line = position.line as usize;
-    let lines = analysed.lines();
-    if line >= lines.line_count() {
+    let Some((line, text, byte)) = line_at(analysed, position, encoding) else {
         return None;
-    }
-    let text = lines.line(line);
-    let byte = character_to_byte(&text, position.character, encoding);
+    };
     let state = shared.workspace.read();
     let help = signature_help(&state.index, &id, &text, byte)?;
     let offset = |byte: usize| byte_to_character(&help.label, byte, encoding);

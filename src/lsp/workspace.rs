@@ -445,11 +445,9 @@ pub fn start_indexing(shared: &Arc<Shared>, roots: Vec<PathBuf>, progress: bool)
 }
 
 fn percentage(done: usize, total: usize) -> u32 {
-    if total == 0 {
-        100
-    } else {
-        u32::try_from(done * 100 / total).unwrap_or(100)
-    }
+    (done * 100)
+        .checked_div(total)
+        .map_or(100, |share| u32::try_from(share).unwrap_or(100))
 }
 
 /// Reads every program file below `roots`; `None` when cancelled, else the number of files.
