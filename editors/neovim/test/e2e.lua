@@ -248,6 +248,10 @@ local function run()
         return false, table.concat(case[1], ' ') .. ' gave ' .. vim.inspect(options) .. ' ' .. tostring(problem)
       end
     end
+    local completed = vim.fn.getcompletion('SinumerikRenumber 10 d', 'cmdline')
+    if not vim.deep_equal(completed, { 'drop' }) then
+      return false, 'completion of "d": ' .. vim.inspect(completed)
+    end
     for _, bad in ipairs({ { '10', '0' }, { 'ten' }, { '-5' }, { '1', '2', '3' }, { '2147483648' }, { 'KEEP' } }) do
       local options, problem = sinumerik.renumber_options(bad)
       if options ~= nil or type(problem) ~= 'string' then

@@ -300,8 +300,11 @@ function M.prepare_buffer(bufnr)
     M.renumber(0, options)
   end, {
     nargs = '*',
-    complete = function()
-      return M.NUMBERING_MODES
+    -- Like customlist: Neovim does not filter what the function returns.
+    complete = function(lead)
+      return vim.tbl_filter(function(mode)
+        return mode:sub(1, #lead) == lead
+      end, M.NUMBERING_MODES)
     end,
     desc = 'Renumber the blocks: start (10), step (10), keep, all or drop existing numbers (keep)',
   })
