@@ -200,7 +200,8 @@ pub fn references(
     locations(&mut texts, &found)
 }
 
-/// `textDocument/documentHighlight`: a label and its jumps, a variable and its reads and writes.
+/// `textDocument/documentHighlight`: a label and its jumps, a variable and its reads and writes
+/// (nothing while a large document's entry is older than its text, see `current_if_cheap`).
 pub fn highlights(
     shared: &Shared,
     analysed: &Analysed,
@@ -208,7 +209,9 @@ pub fn highlights(
     position: Position,
     encoding: PositionEncoding,
 ) -> Vec<DocumentHighlight> {
-    let id = shared.workspace.ensure_current(uri, analysed);
+    let Some(id) = shared.workspace.current_if_cheap(uri, analysed) else {
+        return Vec::new();
+    };
     let cursor = Cursor::new(id.clone(), analysed, position, encoding);
     let state = shared.workspace.read();
     let found = navigation::highlights(&state.index, &cursor.id, cursor.line, cursor.byte);
@@ -342,7 +345,8 @@ pub fn workspace_symbols(
 }
 
 /// The hover documentation of the word at `byte` of line `line` (whose text is `line_text`) of the
-/// analysed document.
+/// analysed document. While the entry of a large document is older than its text, only the
+/// language's own words are documented (the document's symbols could be on other lines now).
 pub fn documentation(
     shared: &Shared,
     analysed: &Analysed,
@@ -351,7 +355,10 @@ pub fn documentation(
     line: usize,
     byte: usize,
 ) -> Option<crate::ide::documentation::Documentation> {
-    let id = shared.workspace.ensure_current(uri, analysed);
+    let id = shared
+        .workspace
+        .current_if_cheap(uri, analysed)
+        .unwrap_or_else(|| DocumentId::from(""));
     let state = shared.workspace.read();
     crate::ide::documentation::documentation_at(&state.index, &id, line_text, line, byte)
 }

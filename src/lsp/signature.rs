@@ -23,9 +23,7 @@ pub fn signature(
     encoding: PositionEncoding,
 ) -> Option<SignatureHelp> {
     let id = shared.workspace.ensure_present(uri, analysed);
-    let Some((line, text, byte)) = line_at(analysed, position, encoding) else {
-        return None;
-    };
+    let (_, text, byte) = line_at(analysed, position, encoding)?;
     let state = shared.workspace.read();
     let help = signature_help(&state.index, &id, &text, byte)?;
     let offset = |byte: usize| byte_to_character(&help.label, byte, encoding);

@@ -36,6 +36,11 @@ use tower_lsp_server::ls_types::{
 /// How long after the last edit of a document its index entry is rebuilt.
 const DEBOUNCE: Duration = Duration::from_millis(300);
 
+/// The largest document whose entry a request made at every cursor move (highlights, hover) rebuilds
+/// itself when it is older than the text: about 20 ms of work. A larger document waits for its
+/// debounced update (a 1,000,000-line program takes a third of a second, under the analysis's lock).
+const CHEAP_REBUILD_LINES: usize = 50_000;
+
 /// The index and what the server knows about its entries.
 #[derive(Default)]
 pub struct IndexState {
@@ -94,6 +99,9 @@ pub struct Workspace {
     runs: AtomicU64,
     /// The workspace folders and the cycle folders, as the last run indexed them.
     roots: Mutex<Vec<PathBuf>>,
+    /// Held while the cross-file findings are computed: two computations at once could store the
+    /// findings of the older index last.
+    refreshing: Mutex<()>,
 }
 
 /// The index's name for a document.
@@ -160,6 +168,17 @@ impl Workspace {
         let ascii = analysed.rope.len_bytes() == analysed.rope.len_chars();
         self.insert_open(&id, uri, symbols, analysed.revision, ascii);
         id
+    }
+
+    /// Like [`Workspace::ensure_current`] for requests made at every cursor move: `None` when the
+    /// entry is older than `analysed` and the document too large to rebuild it now.
+    pub fn current_if_cheap(&self, uri: &Uri, analysed: &Analysed) -> Option<DocumentId> {
+        let id = document_id(uri);
+        if self.read().open.get(&id) == Some(&analysed.revision) {
+            return Some(id);
+        }
+        let line_count = crate::analysis::document::LineSource::line_count(&analysed.lines());
+        (line_count <= CHEAP_REBUILD_LINES).then(|| self.ensure_current(uri, analysed))
     }
 
     /// Makes sure an open document has an entry (possibly a few edits old, which completion and
@@ -339,6 +358,7 @@ pub fn document_closed(shared: &Arc<Shared>, uri: &Uri) {
 /// Computes the cross-file findings of every open document from the index and republishes those
 /// whose findings changed. Runs on the blocking pool.
 pub fn refresh_diagnostics(shared: &Shared) {
+    let _one_at_a_time = lock(&shared.workspace.refreshing);
     let context = shared.context();
     for document in shared.documents.all() {
         let id = document_id(&document.uri);
