@@ -57,7 +57,11 @@ async fn initialize_announces_the_features_and_negotiates_the_encoding() {
     assert_eq!(capabilities["inlayHintProvider"], true);
     assert_eq!(
         capabilities["executeCommandProvider"]["commands"],
-        json!(["sinumerik.endpointPreview"])
+        json!([
+            "sinumerik.endpointPreview",
+            "sinumerik.renumber",
+            "sinumerik.format"
+        ])
     );
     assert_eq!(
         capabilities["codeActionProvider"]["codeActionKinds"],

@@ -173,6 +173,14 @@ pub fn renumber(
             None => {}
         }
     }
+    // A number that stays as it is is no change: the editor gets only real edits, and none at all
+    // for a program that is numbered as asked already.
+    edits.retain(|edit| {
+        source
+            .line(edit.line)
+            .get(edit.span.start()..edit.span.end())
+            != Some(edit.new_text.as_str())
+    });
     Ok(edits)
 }
 
@@ -237,6 +245,25 @@ mod tests {
             mode,
         };
         renumber_text(text, &MachineConfig::default(), options).unwrap()
+    }
+
+    #[test]
+    fn a_program_numbered_as_asked_gets_no_edits() {
+        let text = "N1 G0 X1\nN2 IF R1 > 0 GOTOF N4\nN3 G1 X2\nN4 M30\n";
+        let options = RenumberOptions {
+            start: 1,
+            step: 1,
+            mode: NumberingMode::All,
+        };
+        let source = crate::analysis::document::TextLines::new(text);
+        let edits = renumber(&source, &MachineConfig::default(), options).unwrap();
+        assert_eq!(edits, Vec::new());
+        let shifted = RenumberOptions {
+            start: 2,
+            ..options
+        };
+        let edits = renumber(&source, &MachineConfig::default(), shifted).unwrap();
+        assert_eq!(edits.len(), 5, "four numbers and the jump: {edits:?}");
     }
 
     #[test]

@@ -9,6 +9,7 @@ use crate::analysis::document::{DocumentAnalysis, LineSource};
 use crate::analysis::ProgramKind;
 use crate::config::MachineConfig;
 use crate::lsp::convert::{diagnostics_json, publish_diagnostics_frame, PositionEncoding};
+use crate::lsp::cross_file::{with_extra, ExtraDiagnostics};
 use crate::lsp::diagnostics_array::DiagnosticsArray;
 use crate::lsp::log;
 use crate::lsp::outgoing::{Outgoing, OutgoingSender};
@@ -72,6 +73,16 @@ pub struct OpenDocument {
     analysis: Mutex<Option<Analysed>>,
     /// The diagnostics last written, for the worker only.
     published: Mutex<Option<Published>>,
+    /// The cross-file findings, published with the analysis's diagnostics (`cross_file.rs`).
+    pub extra: Mutex<ExtraDiagnostics>,
+}
+
+/// The text of a document as it is now, with what the workspace index needs to read it.
+pub struct TextSnapshot {
+    pub rope: Rope,
+    pub version: i32,
+    pub revision: u64,
+    pub config: Arc<MachineConfig>,
 }
 
 /// Diagnostics as last written. In an ASCII document the text of a diagnostic depends only on the
@@ -113,6 +124,7 @@ impl OpenDocument {
             }),
             analysis: Mutex::new(None),
             published: Mutex::new(None),
+            extra: Mutex::new(ExtraDiagnostics::default()),
         }
     }
 
@@ -149,6 +161,24 @@ impl OpenDocument {
         lock(&self.text).revision
     }
 
+    /// The rope (a cheap copy), version, revision and configuration as they are now.
+    pub fn text_snapshot(&self) -> TextSnapshot {
+        let text = lock(&self.text);
+        TextSnapshot {
+            rope: text.text.rope.clone(),
+            version: text.text.version,
+            revision: text.revision,
+            config: Arc::clone(&text.config),
+        }
+    }
+
+    /// Publishes the diagnostics again (the cross-file findings changed); a running worker notices
+    /// the change itself.
+    pub fn republish(self: &Arc<Self>, context: &WorkerContext) {
+        let mut text = lock(&self.text);
+        self.schedule(&mut text, context);
+    }
+
     /// The version and the whole text as they are now.
     pub fn text_now(&self) -> (i32, String) {
         let text = lock(&self.text);
@@ -173,6 +203,7 @@ impl OpenDocument {
             };
         }
         text.revision += 1;
+        lock(&self.extra).on_edit(changed, text.revision);
         self.schedule(&mut text, context);
         Ok(())
     }
@@ -314,12 +345,22 @@ impl OpenDocument {
                 let slot = self.catch_up();
                 let analysed_in = started.elapsed();
                 slot.as_ref().map(|analysed| {
-                    let array = self.diagnostics_array(analysed, context.encoding);
+                    let (array, extra_generation) = with_extra(
+                        self.diagnostics_array(analysed, context.encoding),
+                        &self.extra,
+                        analysed,
+                        context.encoding,
+                    );
                     let (head, tail) =
                         publish_diagnostics_frame(&self.uri, Some(analysed.version), array.len());
                     let message = (head, array, tail);
                     let count = analysed.analysis.diagnostics().len();
-                    (analysed.revision, message, count, analysed_in)
+                    (
+                        (analysed.revision, extra_generation),
+                        message,
+                        count,
+                        analysed_in,
+                    )
                 })
             }));
             if let Ok(Some((_, _, count, analysed_in))) = &result {
@@ -335,20 +376,22 @@ impl OpenDocument {
                 );
             }
             match result {
-                Ok(Some((revision, message, _, _))) => {
+                Ok(Some(((revision, extra_generation), message, _, _))) => {
                     let mut text = lock(&self.text);
                     if text.closed {
                         text.worker_running = false;
                         return;
                     }
-                    if text.revision == revision {
+                    if text.revision == revision
+                        && lock(&self.extra).generation() == extra_generation
+                    {
                         // Sent under the lock: a newer revision's publication cannot overtake it.
                         let (head, array, tail) = message;
                         context.outgoing.send_parts(head, array, tail);
                         text.worker_running = false;
                         return;
                     }
-                    // The text changed meanwhile: analyse again.
+                    // The text or the cross-file findings changed meanwhile: write again.
                 }
                 Ok(None) => {
                     lock(&self.text).worker_running = false;

@@ -1,12 +1,15 @@
 //! The hover: on an axis word, how its value resolves; on a G function, what it does, its group and
-//! the function of that group in effect before the block; anywhere else in a block, the modal state
-//! in effect and the block's end point. Built from the analysis's `BlockReport` only.
+//! the function of that group in effect before the block; on other words the documentation of
+//! `ide::documentation` (keywords, cycles, system variables, a called `PROC` with its doc comment);
+//! and everywhere in a block the modal state in effect and the block's end point. The values come
+//! from the analysis's `BlockReport` only.
 
 use crate::analysis::document::{
     BlockReport, LineSource, ResolutionMode, StateSummary, WordResolution,
 };
 use crate::config::{AxisKind, MachineConfig};
 use crate::diagnostics::Span;
+use crate::ide::documentation::Documentation;
 use crate::lsp::convert::{character_to_byte, span_to_range, PositionEncoding};
 use crate::lsp::documents::Analysed;
 use crate::lsp::gcode_help;
@@ -17,8 +20,15 @@ use crate::syntax::gcodes::GCode;
 use std::fmt::Write;
 use tower_lsp_server::ls_types::{Hover, HoverContents, MarkupContent, MarkupKind, Position};
 
-/// The hover at `position` of the analysed text, `None` on a line without words.
-pub fn hover(analysed: &Analysed, position: Position, encoding: PositionEncoding) -> Option<Hover> {
+/// The hover at `position` of the analysed text, `None` on a line without words. On a word that is
+/// neither an axis word nor a G function, `documentation` (called with the line's text, its index
+/// and the byte offset) gives the word's documentation, shown above the block's state.
+pub fn hover(
+    analysed: &Analysed,
+    position: Position,
+    encoding: PositionEncoding,
+    documentation: impl FnOnce(&str, usize, usize) -> Option<Documentation>,
+) -> Option<Hover> {
     let lines = analysed.lines();
     let line_idx = position.line as usize;
     if line_idx >= lines.line_count() {
@@ -33,18 +43,27 @@ pub fn hover(analysed: &Analysed, position: Position, encoding: PositionEncoding
     let config = analysed.analysis.config();
     let report = analysed.analysis.block_report(&lines, line_idx);
     let word = word_at(&line_words, offset);
-    let (markdown, span) = match word {
-        Some(word) => match axis_of(word, config) {
-            Some(axis) => (
-                axis_hover(word, &axis, &line_words, &report, config),
-                Some(word.span.clone()),
+    let special = word.and_then(|word| match axis_of(word, config) {
+        Some(axis) => Some((
+            axis_hover(word, &axis, &line_words, &report, config),
+            Some(word.span.clone()),
+        )),
+        None => gcode_of(word).map(|code| (gcode_hover(code, &report), Some(word.span.clone()))),
+    });
+    let (markdown, span) = match special {
+        Some(found) => found,
+        None => match documentation(&line, line_idx, offset) {
+            Some(doc) => (
+                format!(
+                    "**{}**\n\n{}\n\n---\n\n{}",
+                    doc.title,
+                    doc.text,
+                    block_hover(&report, config)
+                ),
+                Some(doc.span.start()..doc.span.end()),
             ),
-            None => match gcode_of(word) {
-                Some(code) => (gcode_hover(code, &report), Some(word.span.clone())),
-                None => (block_hover(&report, config), None),
-            },
+            None => (block_hover(&report, config), None),
         },
-        None => (block_hover(&report, config), None),
     };
     Some(Hover {
         contents: HoverContents::Markup(MarkupContent {

@@ -16,7 +16,9 @@
 //! - `open_texts.rs`: the texts of large `didOpen` messages, which the guard reads itself.
 
 mod code_action;
+mod completion;
 mod convert;
+mod cross_file;
 mod diagnostics_array;
 mod documents;
 mod endpoint_preview;
@@ -27,17 +29,24 @@ mod hover;
 mod inlay;
 mod log;
 mod memory;
+mod navigation;
 mod numbers;
 mod open_texts;
 mod outgoing;
 mod outline;
+mod rewrite_commands;
+mod semantic;
 mod server;
 mod settings;
+mod signature;
 mod text_document;
 mod words;
+mod workspace;
+mod workspace_edit;
 
 pub use convert::PositionEncoding;
 pub use ext::{EndpointPreviewParams, ENDPOINT_PREVIEW_COMMAND};
+pub use rewrite_commands::{FORMAT_COMMAND, RENUMBER_COMMAND};
 pub use text_document::{apply_changes, DocumentText, LineChange, RopeLineChange, RopeLines};
 
 use tokio::io::{AsyncRead, AsyncWrite};

@@ -17,8 +17,11 @@ use crate::lsp::inlay::inlay_hints;
 use crate::lsp::log::HandlerTimer;
 use crate::lsp::open_texts::OpenTexts;
 use crate::lsp::outgoing::{Outgoing, OutgoingSender};
+use crate::lsp::rewrite_commands::{self, FORMAT_COMMAND, RENUMBER_COMMAND};
 use crate::lsp::settings::{machine_config_for, Settings};
 use crate::lsp::text_document::ChangeError;
+use crate::lsp::workspace::{self, Workspace};
+use crate::lsp::{completion, navigation, semantic, signature};
 use serde_json::Value;
 use std::path::{Path, PathBuf};
 use std::sync::{Arc, Mutex};
@@ -41,13 +44,24 @@ struct ClientInfo {
     encoding: Option<PositionEncoding>,
     pulls_configuration: bool,
     refreshes_inlay_hints: bool,
+    /// Whether workspace edits may carry document versions (`documentChanges`).
+    versioned_edits: bool,
+    /// Whether the client shows `$/progress` for a token the server creates.
+    work_done_progress: bool,
+    /// Whether `workspace/didChangeWatchedFiles` can be registered dynamically.
+    watches_files: bool,
+    /// Whether completion items may be snippets.
+    snippets: bool,
     workspace_root: Option<PathBuf>,
+    /// Every workspace folder (the root URI when the client gave no folders).
+    workspace_folders: Vec<PathBuf>,
 }
 
 /// The server's state, shared with the tasks it spawns.
 pub struct Shared {
-    client: Client,
-    documents: Documents,
+    pub(super) client: Client,
+    pub(super) documents: Documents,
+    pub(super) workspace: Workspace,
     settings: Mutex<Settings>,
     info: Mutex<ClientInfo>,
     outgoing: OutgoingSender,
@@ -109,6 +123,7 @@ impl Backend {
         let shared = Shared {
             client,
             documents: Documents::default(),
+            workspace: Workspace::default(),
             settings: Mutex::new(Settings::default()),
             info: Mutex::new(ClientInfo::default()),
             outgoing,
@@ -181,24 +196,87 @@ impl Backend {
 }
 
 impl Shared {
-    fn encoding(&self) -> PositionEncoding {
+    pub(super) fn encoding(&self) -> PositionEncoding {
         lock(&self.info).encoding.unwrap_or(PositionEncoding::Utf16)
     }
 
-    fn context(&self) -> WorkerContext {
+    pub(super) fn context(&self) -> WorkerContext {
         WorkerContext {
             outgoing: self.outgoing.clone(),
             encoding: self.encoding(),
         }
     }
 
-    fn warn(&self, message: String) {
+    pub(super) fn settings_now(&self) -> Settings {
+        lock(&self.settings).clone()
+    }
+
+    pub(super) fn workspace_root(&self) -> Option<PathBuf> {
+        lock(&self.info).workspace_root.clone()
+    }
+
+    /// The folders the index reads: the workspace folders and the configured cycle folders
+    /// (relative ones taken from the first workspace folder).
+    fn index_roots(&self) -> Vec<PathBuf> {
+        let info = lock(&self.info).clone();
+        let mut roots = info.workspace_folders.clone();
+        for folder in &lock(&self.settings).cycle_folders {
+            match (&info.workspace_root, folder.is_relative()) {
+                (Some(root), true) => roots.push(root.join(folder)),
+                _ => roots.push(folder.clone()),
+            }
+        }
+        roots
+    }
+
+    /// Starts indexing the workspace again (at start, and when folders or settings change).
+    fn reindex(self: &Arc<Self>) {
+        let roots = self.index_roots();
+        if roots.is_empty() {
+            return;
+        }
+        let progress = lock(&self.info).work_done_progress;
+        workspace::start_indexing(self, roots, progress);
+    }
+
+    /// Asks the client to tell about changed program files and configuration files.
+    fn watch_files(&self) {
+        let client = self.client.clone();
+        let outgoing = self.outgoing.clone();
+        tokio::spawn(async move {
+            let watcher = |pattern: &str| FileSystemWatcher {
+                glob_pattern: GlobPattern::String(pattern.to_string()),
+                kind: None,
+            };
+            let options = DidChangeWatchedFilesRegistrationOptions {
+                watchers: vec![
+                    watcher("**/*.{mpf,spf,def,MPF,SPF,DEF}"),
+                    watcher("**/sinumerik.toml"),
+                ],
+            };
+            let registration = Registration {
+                id: "sinumerik/watchedFiles".to_string(),
+                method: "workspace/didChangeWatchedFiles".to_string(),
+                register_options: serde_json::to_value(options).ok(),
+            };
+            if let Err(error) = client.register_capability(vec![registration]).await {
+                outgoing.log_warning(format!("cannot watch the workspace's files: {error}"));
+            }
+        });
+    }
+
+    /// Whether the client takes workspace edits with document versions.
+    pub(super) fn versioned_edits(&self) -> bool {
+        lock(&self.info).versioned_edits
+    }
+
+    pub(super) fn warn(&self, message: String) {
         self.outgoing.log_warning(message);
     }
 
     /// The machine configuration of a document; a configuration file that cannot be used is
     /// reported (the document is still checked, with the defaults).
-    fn machine_config(&self, path: Option<&Path>) -> Arc<crate::config::MachineConfig> {
+    pub(super) fn machine_config(&self, path: Option<&Path>) -> Arc<crate::config::MachineConfig> {
         let settings = lock(&self.settings).clone();
         let root = lock(&self.info).workspace_root.clone();
         let (config, error) = machine_config_for(path, &settings, root.as_deref());
@@ -231,7 +309,7 @@ impl Shared {
     }
 
     /// Applies new settings: documents whose configuration changed are analysed again.
-    fn apply_settings(&self, value: &Value) {
+    fn apply_settings(self: &Arc<Self>, value: &Value) {
         let (old, new) = {
             let mut settings = lock(&self.settings);
             let old = settings.clone();
@@ -247,6 +325,9 @@ impl Shared {
                 document.set_config(config, &context);
             }
         }
+        if old.cycle_folders != new.cycle_folders {
+            self.reindex();
+        }
         if old.inlay_hints != new.inlay_hints && lock(&self.info).refreshes_inlay_hints {
             let client = self.client.clone();
             tokio::spawn(async move {
@@ -257,7 +338,7 @@ impl Shared {
 
     /// The open document, the revision it had when the request came, and a job that answers the
     /// request on the up-to-date analysis in the blocking pool.
-    async fn on_analysis<T: Send + 'static>(
+    pub(super) async fn on_analysis<T: Send + 'static>(
         &self,
         uri: &Uri,
         job: impl FnOnce(&Analysed) -> T + Send + 'static,
@@ -301,9 +382,16 @@ impl LanguageServer for Backend {
             .as_ref()
             .and_then(|folders| folders.first())
             .map(|folder| folder.uri.clone())
-            .or(root_uri)
+            .or(root_uri.clone())
             .as_ref()
             .and_then(file_path);
+        let workspace_folders: Vec<PathBuf> = match &params.workspace_folders {
+            Some(folders) if !folders.is_empty() => folders
+                .iter()
+                .filter_map(|folder| file_path(&folder.uri))
+                .collect(),
+            _ => root_uri.as_ref().and_then(file_path).into_iter().collect(),
+        };
         *lock(&self.info) = ClientInfo {
             encoding: Some(encoding),
             pulls_configuration: workspace
@@ -313,7 +401,30 @@ impl LanguageServer for Backend {
                 .and_then(|workspace| workspace.inlay_hint.as_ref())
                 .and_then(|inlay| inlay.refresh_support)
                 .unwrap_or(false),
+            versioned_edits: workspace
+                .and_then(|workspace| workspace.workspace_edit.as_ref())
+                .and_then(|edit| edit.document_changes)
+                .unwrap_or(false),
+            work_done_progress: params
+                .capabilities
+                .window
+                .as_ref()
+                .and_then(|window| window.work_done_progress)
+                .unwrap_or(false),
+            snippets: params
+                .capabilities
+                .text_document
+                .as_ref()
+                .and_then(|text| text.completion.as_ref())
+                .and_then(|completion| completion.completion_item.as_ref())
+                .and_then(|item| item.snippet_support)
+                .unwrap_or(false),
+            watches_files: workspace
+                .and_then(|workspace| workspace.did_change_watched_files.as_ref())
+                .and_then(|watched| watched.dynamic_registration)
+                .unwrap_or(false),
             workspace_root,
+            workspace_folders,
         };
         if let Some(options) = &params.initialization_options {
             if let Err(message) = lock(&self.settings).apply(options) {
@@ -340,8 +451,57 @@ impl LanguageServer for Backend {
                 inlay_hint_provider: Some(OneOf::Left(true)),
                 document_symbol_provider: Some(OneOf::Left(true)),
                 folding_range_provider: Some(FoldingRangeProviderCapability::Simple(true)),
+                definition_provider: Some(OneOf::Left(true)),
+                references_provider: Some(OneOf::Left(true)),
+                document_highlight_provider: Some(OneOf::Left(true)),
+                rename_provider: Some(OneOf::Right(RenameOptions {
+                    prepare_provider: Some(true),
+                    work_done_progress_options: WorkDoneProgressOptions::default(),
+                })),
+                workspace_symbol_provider: Some(OneOf::Left(true)),
+                completion_provider: Some(CompletionOptions {
+                    trigger_characters: Some(
+                        completion::TRIGGER_CHARACTERS
+                            .iter()
+                            .map(|character| character.to_string())
+                            .collect(),
+                    ),
+                    ..CompletionOptions::default()
+                }),
+                signature_help_provider: Some(SignatureHelpOptions {
+                    trigger_characters: Some(
+                        signature::TRIGGER_CHARACTERS
+                            .iter()
+                            .map(|character| character.to_string())
+                            .collect(),
+                    ),
+                    ..SignatureHelpOptions::default()
+                }),
+                semantic_tokens_provider: Some(
+                    SemanticTokensServerCapabilities::SemanticTokensOptions(
+                        SemanticTokensOptions {
+                            legend: semantic::legend(),
+                            range: Some(true),
+                            full: Some(SemanticTokensFullOptions::Bool(true)),
+                            ..SemanticTokensOptions::default()
+                        },
+                    ),
+                ),
+                workspace: Some(WorkspaceServerCapabilities {
+                    workspace_folders: Some(WorkspaceFoldersServerCapabilities {
+                        supported: Some(true),
+                        change_notifications: Some(OneOf::Left(true)),
+                    }),
+                    file_operations: None,
+                }),
+                document_formatting_provider: Some(OneOf::Left(true)),
+                document_range_formatting_provider: Some(OneOf::Left(true)),
                 execute_command_provider: Some(ExecuteCommandOptions {
-                    commands: vec![ENDPOINT_PREVIEW_COMMAND.to_string()],
+                    commands: vec![
+                        ENDPOINT_PREVIEW_COMMAND.to_string(),
+                        RENUMBER_COMMAND.to_string(),
+                        FORMAT_COMMAND.to_string(),
+                    ],
                     ..ExecuteCommandOptions::default()
                 }),
                 ..ServerCapabilities::default()
@@ -358,10 +518,15 @@ impl LanguageServer for Backend {
         if lock(&self.info).pulls_configuration {
             self.request_configuration();
         }
+        if lock(&self.info).watches_files {
+            self.watch_files();
+        }
+        self.shared.reindex();
     }
 
     async fn shutdown(&self) -> Result<()> {
         SHUTDOWN_REQUESTED.store(true, std::sync::atomic::Ordering::SeqCst);
+        self.workspace.cancel();
         Ok(())
     }
 
@@ -393,6 +558,7 @@ impl LanguageServer for Backend {
             replaced.close(&context);
         }
         document.start(&context);
+        workspace::document_changed(&self.shared, &item.uri);
     }
 
     async fn did_change(&self, params: DidChangeTextDocumentParams) {
@@ -411,7 +577,7 @@ impl LanguageServer for Backend {
             params.text_document.version,
             &context,
         ) {
-            Ok(()) => {}
+            Ok(()) => workspace::document_changed(&self.shared, &uri),
             Err(error @ ChangeError::StaleVersion { .. }) => {
                 self.warn(format!("{}: {error}", uri.as_str()));
             }
@@ -422,6 +588,7 @@ impl LanguageServer for Backend {
                 ));
                 if let Some(document) = self.documents.remove(&uri) {
                     document.close(&context);
+                    workspace::document_closed(&self.shared, &uri);
                 }
             }
         }
@@ -430,7 +597,10 @@ impl LanguageServer for Backend {
     async fn did_close(&self, params: DidCloseTextDocumentParams) {
         let uri = params.text_document.uri;
         match self.documents.remove(&uri) {
-            Some(document) => document.close(&self.context()),
+            Some(document) => {
+                document.close(&self.context());
+                workspace::document_closed(&self.shared, &uri);
+            }
             None => self.warn(format!("{} was closed but was not open", uri.as_str())),
         }
     }
@@ -442,21 +612,232 @@ impl LanguageServer for Backend {
             _ => true,
         };
         if has_settings {
-            self.apply_settings(&params.settings);
+            self.shared.apply_settings(&params.settings);
         } else if lock(&self.info).pulls_configuration {
             // The "pull" style: the notification only says that something changed.
             self.request_configuration();
         }
     }
 
+    async fn did_change_watched_files(&self, params: DidChangeWatchedFilesParams) {
+        workspace::files_changed(&self.shared, params.changes);
+    }
+
+    async fn did_change_workspace_folders(&self, params: DidChangeWorkspaceFoldersParams) {
+        {
+            let mut info = lock(&self.info);
+            let removed: Vec<PathBuf> = params
+                .event
+                .removed
+                .iter()
+                .filter_map(|folder| file_path(&folder.uri))
+                .collect();
+            info.workspace_folders
+                .retain(|folder| !removed.contains(folder));
+            info.workspace_folders.extend(
+                params
+                    .event
+                    .added
+                    .iter()
+                    .filter_map(|folder| file_path(&folder.uri)),
+            );
+        }
+        self.shared.reindex();
+    }
+
     async fn hover(&self, params: HoverParams) -> Result<Option<Hover>> {
         let _timer = HandlerTimer::new("textDocument/hover", &self.outgoing);
         let position = params.text_document_position_params.position;
         let encoding = self.encoding();
-        self.on_analysis(
-            &params.text_document_position_params.text_document.uri,
-            move |analysed| hover(analysed, position, encoding),
-        )
+        let uri = params.text_document_position_params.text_document.uri;
+        let shared = Arc::clone(&self.shared);
+        let document_uri = uri.clone();
+        self.on_analysis(&uri, move |analysed| {
+            hover(analysed, position, encoding, |line_text, line, byte| {
+                navigation::documentation(&shared, analysed, &document_uri, line_text, line, byte)
+            })
+        })
+        .await
+    }
+
+    async fn goto_definition(
+        &self,
+        params: GotoDefinitionParams,
+    ) -> Result<Option<GotoDefinitionResponse>> {
+        let _timer = HandlerTimer::new("textDocument/definition", &self.outgoing);
+        let position = params.text_document_position_params.position;
+        let uri = params.text_document_position_params.text_document.uri;
+        let (shared, encoding, document_uri) =
+            (Arc::clone(&self.shared), self.encoding(), uri.clone());
+        self.on_analysis(&uri, move |analysed| {
+            let found =
+                navigation::definition(&shared, analysed, &document_uri, position, encoding);
+            (!found.is_empty()).then_some(GotoDefinitionResponse::Array(found))
+        })
+        .await
+    }
+
+    async fn references(&self, params: ReferenceParams) -> Result<Option<Vec<Location>>> {
+        let _timer = HandlerTimer::new("textDocument/references", &self.outgoing);
+        let position = params.text_document_position.position;
+        let uri = params.text_document_position.text_document.uri;
+        let include_declaration = params.context.include_declaration;
+        let (shared, encoding, document_uri) =
+            (Arc::clone(&self.shared), self.encoding(), uri.clone());
+        self.on_analysis(&uri, move |analysed| {
+            Some(navigation::references(
+                &shared,
+                analysed,
+                &document_uri,
+                position,
+                include_declaration,
+                encoding,
+            ))
+        })
+        .await
+    }
+
+    async fn document_highlight(
+        &self,
+        params: DocumentHighlightParams,
+    ) -> Result<Option<Vec<DocumentHighlight>>> {
+        let _timer = HandlerTimer::new("textDocument/documentHighlight", &self.outgoing);
+        let position = params.text_document_position_params.position;
+        let uri = params.text_document_position_params.text_document.uri;
+        let (shared, encoding, document_uri) =
+            (Arc::clone(&self.shared), self.encoding(), uri.clone());
+        self.on_analysis(&uri, move |analysed| {
+            Some(navigation::highlights(
+                &shared,
+                analysed,
+                &document_uri,
+                position,
+                encoding,
+            ))
+        })
+        .await
+    }
+
+    async fn prepare_rename(
+        &self,
+        params: TextDocumentPositionParams,
+    ) -> Result<Option<PrepareRenameResponse>> {
+        let _timer = HandlerTimer::new("textDocument/prepareRename", &self.outgoing);
+        let position = params.position;
+        let uri = params.text_document.uri;
+        let (shared, encoding, document_uri) =
+            (Arc::clone(&self.shared), self.encoding(), uri.clone());
+        self.on_analysis(&uri, move |analysed| {
+            navigation::prepare_rename(&shared, analysed, &document_uri, position, encoding)
+        })
+        .await
+    }
+
+    async fn rename(&self, params: RenameParams) -> Result<Option<WorkspaceEdit>> {
+        let _timer = HandlerTimer::new("textDocument/rename", &self.outgoing);
+        let position = params.text_document_position.position;
+        let uri = params.text_document_position.text_document.uri;
+        let new_name = params.new_name;
+        let (shared, encoding, document_uri) =
+            (Arc::clone(&self.shared), self.encoding(), uri.clone());
+        self.on_analysis(&uri, move |analysed| {
+            navigation::rename(
+                &shared,
+                analysed,
+                &document_uri,
+                position,
+                &new_name,
+                encoding,
+            )
+        })
+        .await?
+        .map(Some)
+    }
+
+    async fn symbol(
+        &self,
+        params: WorkspaceSymbolParams,
+    ) -> Result<Option<WorkspaceSymbolResponse>> {
+        let _timer = HandlerTimer::new("workspace/symbol", &self.outgoing);
+        let (shared, encoding) = (Arc::clone(&self.shared), self.encoding());
+        let found = tokio::task::spawn_blocking(move || {
+            navigation::workspace_symbols(&shared, &params.query, encoding)
+        })
+        .await
+        .map_err(|_| Error::internal_error())?;
+        Ok(Some(WorkspaceSymbolResponse::Flat(found)))
+    }
+
+    async fn completion(&self, params: CompletionParams) -> Result<Option<CompletionResponse>> {
+        let _timer = HandlerTimer::new("textDocument/completion", &self.outgoing);
+        let position = params.text_document_position.position;
+        let uri = params.text_document_position.text_document.uri;
+        let snippets = lock(&self.info).snippets;
+        let (shared, encoding, document_uri) =
+            (Arc::clone(&self.shared), self.encoding(), uri.clone());
+        self.on_analysis(&uri, move |analysed| {
+            Some(CompletionResponse::Array(completion::completion_items(
+                &shared,
+                analysed,
+                &document_uri,
+                position,
+                snippets,
+                encoding,
+            )))
+        })
+        .await
+    }
+
+    async fn signature_help(&self, params: SignatureHelpParams) -> Result<Option<SignatureHelp>> {
+        let _timer = HandlerTimer::new("textDocument/signatureHelp", &self.outgoing);
+        let position = params.text_document_position_params.position;
+        let uri = params.text_document_position_params.text_document.uri;
+        let (shared, encoding, document_uri) =
+            (Arc::clone(&self.shared), self.encoding(), uri.clone());
+        self.on_analysis(&uri, move |analysed| {
+            signature::signature(&shared, analysed, &document_uri, position, encoding)
+        })
+        .await
+    }
+
+    async fn semantic_tokens_full(
+        &self,
+        params: SemanticTokensParams,
+    ) -> Result<Option<SemanticTokensResult>> {
+        let _timer = HandlerTimer::new("textDocument/semanticTokens/full", &self.outgoing);
+        let uri = params.text_document.uri;
+        let (shared, encoding, document_uri) =
+            (Arc::clone(&self.shared), self.encoding(), uri.clone());
+        self.on_analysis(&uri, move |analysed| {
+            Some(SemanticTokensResult::Tokens(semantic::tokens(
+                &shared,
+                analysed,
+                &document_uri,
+                None,
+                encoding,
+            )))
+        })
+        .await
+    }
+
+    async fn semantic_tokens_range(
+        &self,
+        params: SemanticTokensRangeParams,
+    ) -> Result<Option<SemanticTokensRangeResult>> {
+        let _timer = HandlerTimer::new("textDocument/semanticTokens/range", &self.outgoing);
+        let uri = params.text_document.uri;
+        let range = params.range;
+        let (shared, encoding, document_uri) =
+            (Arc::clone(&self.shared), self.encoding(), uri.clone());
+        self.on_analysis(&uri, move |analysed| {
+            Some(SemanticTokensRangeResult::Tokens(semantic::tokens(
+                &shared,
+                analysed,
+                &document_uri,
+                Some(range),
+                encoding,
+            )))
+        })
         .await
     }
 
@@ -478,6 +859,32 @@ impl LanguageServer for Backend {
         let _timer = HandlerTimer::new("textDocument/foldingRange", &self.outgoing);
         self.on_analysis(&params.text_document.uri, |analysed| {
             Some(crate::lsp::outline::folding_ranges(analysed))
+        })
+        .await
+    }
+
+    async fn formatting(&self, params: DocumentFormattingParams) -> Result<Option<Vec<TextEdit>>> {
+        let _timer = HandlerTimer::new("textDocument/formatting", &self.outgoing);
+        let encoding = self.encoding();
+        self.on_analysis(&params.text_document.uri, move |analysed| {
+            Some(rewrite_commands::formatting_edits(analysed, None, encoding))
+        })
+        .await
+    }
+
+    async fn range_formatting(
+        &self,
+        params: DocumentRangeFormattingParams,
+    ) -> Result<Option<Vec<TextEdit>>> {
+        let _timer = HandlerTimer::new("textDocument/rangeFormatting", &self.outgoing);
+        let encoding = self.encoding();
+        let range = params.range;
+        self.on_analysis(&params.text_document.uri, move |analysed| {
+            Some(rewrite_commands::formatting_edits(
+                analysed,
+                Some(range),
+                encoding,
+            ))
         })
         .await
     }
@@ -506,6 +913,10 @@ impl LanguageServer for Backend {
 
     async fn execute_command(&self, params: ExecuteCommandParams) -> Result<Option<Value>> {
         let _timer = HandlerTimer::new("workspace/executeCommand", &self.outgoing);
+        if rewrite_commands::is_rewrite_command(&params.command) {
+            return rewrite_commands::execute(&self.shared, &params.command, &params.arguments)
+                .await;
+        }
         if params.command != ENDPOINT_PREVIEW_COMMAND {
             return Err(Error::invalid_params(format!(
                 "unknown command {}",

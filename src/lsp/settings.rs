@@ -29,6 +29,8 @@ pub struct Settings {
     pub config_file: Option<PathBuf>,
     /// The machine of documents without a `sinumerik.toml`: a mill (the default) or a lathe.
     pub machine_kind: MachineKind,
+    /// Folders of cycles and subprograms outside the workspace folders that the index reads too.
+    pub cycle_folders: Vec<PathBuf>,
 }
 
 impl Settings {
@@ -64,6 +66,14 @@ impl Settings {
                         "setting `machineKind`: expected \"mill\" or \"turn\", not {value}"
                     )),
                 },
+                "cycleFolders" => {
+                    match serde_json::from_value::<Option<Vec<PathBuf>>>(value.clone()) {
+                        Ok(folders) => self.cycle_folders = folders.unwrap_or_default(),
+                        Err(error) => problems.push(format!(
+                            "setting `cycleFolders`: expected a list of paths: {error}"
+                        )),
+                    }
+                }
                 // Clients send their whole section; keys of other versions are not an error.
                 _ => {}
             }

@@ -25,6 +25,9 @@ pub struct TestClient {
     next_id: i64,
     /// The answer to `workspace/configuration` (one value per item asked for).
     pub configuration: Arc<Mutex<Value>>,
+    /// The answers to other requests of the server by method (`null` for methods not listed);
+    /// `workspace/applyEdit` is answered `{"applied": true}` unless a test changes it.
+    pub replies: Arc<Mutex<std::collections::HashMap<String, Value>>>,
     child: Option<tokio::process::Child>,
     server: Option<tokio::task::JoinHandle<()>>,
 }
@@ -74,9 +77,14 @@ impl TestClient {
     {
         let writer: Writer = Arc::new(tokio::sync::Mutex::new(Box::new(writer)));
         let configuration = Arc::new(Mutex::new(json!([null])));
+        let replies = Arc::new(Mutex::new(std::collections::HashMap::from([(
+            "workspace/applyEdit".to_string(),
+            json!({"applied": true}),
+        )])));
         let (sender, incoming) = mpsc::unbounded_channel();
         let reply_writer = Arc::clone(&writer);
         let reply_configuration = Arc::clone(&configuration);
+        let reply_table = Arc::clone(&replies);
         tokio::spawn(async move {
             let mut reader = BufReader::new(reader);
             while let Some(message) = read_message(&mut reader).await {
@@ -85,7 +93,13 @@ impl TestClient {
                     let result = if message["method"] == "workspace/configuration" {
                         reply_configuration.lock().unwrap().clone()
                     } else {
-                        Value::Null
+                        let method = message["method"].as_str().unwrap_or_default();
+                        reply_table
+                            .lock()
+                            .unwrap()
+                            .get(method)
+                            .cloned()
+                            .unwrap_or(Value::Null)
                     };
                     let reply = json!({"jsonrpc": "2.0", "id": message["id"], "result": result});
                     write_value(&reply_writer, &reply).await;
@@ -101,6 +115,7 @@ impl TestClient {
             stash: VecDeque::new(),
             next_id: 1,
             configuration,
+            replies,
             child: None,
             server: None,
         }
@@ -506,4 +521,32 @@ pub fn temp_folder(name: &str) -> std::path::PathBuf {
     let _ = std::fs::remove_dir_all(&folder);
     std::fs::create_dir_all(&folder).unwrap();
     folder
+}
+
+/// Applies LSP text edits (`[{"range", "newText"}]`, positions in UTF-16) to `text`, as a client
+/// does: all ranges refer to the text before the edits.
+pub fn apply_text_edits(text: &str, edits: &[Value]) -> String {
+    let mut located: Vec<(usize, usize, &str)> = edits
+        .iter()
+        .map(|edit| {
+            let at = |point: &Value| {
+                byte_offset(
+                    text,
+                    point["line"].as_u64().unwrap() as u32,
+                    point["character"].as_u64().unwrap() as u32,
+                )
+            };
+            (
+                at(&edit["range"]["start"]),
+                at(&edit["range"]["end"]),
+                edit["newText"].as_str().unwrap(),
+            )
+        })
+        .collect();
+    located.sort_by_key(|(start, end, _)| std::cmp::Reverse((*start, *end)));
+    let mut out = text.to_string();
+    for (start, end, new_text) in located {
+        out.replace_range(start..end.max(start), new_text);
+    }
+    out
 }

@@ -2,8 +2,10 @@
 --   SINUMERIK_LSP_BIN=target/release/sinumerik-lsp nvim --headless -u NONE -i NONE -n \
 --     --cmd 'set rtp+=editors/neovim' -c 'luafile editors/neovim/test/e2e.lua'
 -- It opens the turning seed example, waits for diagnostics, hovers on Z=IC(-32) and finds 58, edits
--- a line and sees the diagnostics change, runs :SinumerikPreview, and ends with `N passed, N failed`
--- and a non-zero exit code on failure. The buffer is never written.
+-- a line and sees the diagnostics change, runs :SinumerikPreview, changes a setting, renumbers and
+-- formats scratch buffers with :SinumerikRenumber and :SinumerikFormat, goes to definitions and asks
+-- for completions, and ends with `N passed, N failed` and a non-zero exit code on failure. No buffer
+-- is ever written.
 local passed, failed = 0, 0
 
 local function report(ok, name, detail)
@@ -190,6 +192,184 @@ local function run()
     end, 50)
     local client = require('sinumerik').client(buf)
     return off == 0 and client.id == id, off .. ' hints after inlayHints = off (client ' .. client.id .. ', was ' .. id .. ')'
+  end)
+
+  -- The commands that rewrite a program run on scratch buffers that are never written.
+  local folder = vim.fn.tempname()
+  vim.fn.mkdir(folder, 'p')
+  local function scratch(name, lines)
+    vim.cmd('hide edit ' .. vim.fn.fnameescape(folder .. '/' .. name))
+    local bufnr = vim.api.nvim_get_current_buf()
+    vim.api.nvim_buf_set_lines(bufnr, 0, -1, false, lines)
+    -- Closes the undo step of the text, as a user's next command would.
+    vim.cmd('let &undolevels = &undolevels')
+    local attached = vim.wait(15000, function()
+      return require('sinumerik').client(bufnr) ~= nil
+    end, 20)
+    return bufnr, attached
+  end
+
+  -- Runs the user command `command` and waits for the answer, through a hook on `M[name]`.
+  local function run_command(name, command)
+    local module = require('sinumerik')
+    local original = module[name]
+    local result, problem
+    module[name] = function(...)
+      local args = { ... }
+      table.insert(args, function(value, err)
+        result, problem = value, err
+      end)
+      original(unpack(args))
+    end
+    local ok, error = pcall(vim.cmd, command)
+    module[name] = original
+    if not ok then
+      return nil, tostring(error)
+    end
+    if not vim.wait(15000, function()
+      return result ~= nil or problem ~= nil
+    end, 20) then
+      return nil, 'no answer'
+    end
+    return result, problem
+  end
+
+  check(':SinumerikRenumber reads start, step and mode, and refuses what is not a block number', function()
+    local sinumerik = require('sinumerik')
+    local cases = {
+      { {}, { start = 10, step = 10, mode = 'keep' } },
+      { { '100', '5', 'all' }, { start = 100, step = 5, mode = 'all' } },
+      { { 'drop' }, { start = 10, step = 10, mode = 'drop' } },
+      { { '0', 'drop', '1' }, { start = 0, step = 1, mode = 'drop' } },
+    }
+    for _, case in ipairs(cases) do
+      local options, problem = sinumerik.renumber_options(case[1])
+      if not vim.deep_equal(options, case[2]) then
+        return false, table.concat(case[1], ' ') .. ' gave ' .. vim.inspect(options) .. ' ' .. tostring(problem)
+      end
+    end
+    local completed = vim.fn.getcompletion('SinumerikRenumber 10 d', 'cmdline')
+    if not vim.deep_equal(completed, { 'drop' }) then
+      return false, 'completion of "d": ' .. vim.inspect(completed)
+    end
+    for _, bad in ipairs({ { '10', '0' }, { 'ten' }, { '-5' }, { '1', '2', '3' }, { '2147483648' }, { 'KEEP' } }) do
+      local options, problem = sinumerik.renumber_options(bad)
+      if options ~= nil or type(problem) ~= 'string' then
+        return false, table.concat(bad, ' ') .. ' was accepted'
+      end
+    end
+    return true
+  end)
+
+  check(':SinumerikRenumber 100 5 all renumbers the buffer, jumps included', function()
+    local bufnr, attached = scratch('renumber.mpf', {
+      'N1 G90 G71 G17 G0 X0 Y0',
+      'N2 IF R1 > 0 GOTOF N9',
+      'N3 G1 X10 F100',
+      'N9 G0 X20',
+      'M30',
+    })
+    if not attached then
+      return false, 'no client for the scratch buffer'
+    end
+    local result, problem = run_command('renumber', 'SinumerikRenumber 100 5 all')
+    if problem then
+      return false, problem
+    end
+    local lines = vim.api.nvim_buf_get_lines(bufnr, 0, -1, false)
+    local expected = { 'N100 G90 G71 G17 G0 X0 Y0', 'N105 IF R1 > 0 GOTOF N115', 'N110 G1 X10 F100', 'N115 G0 X20', 'N120 M30' }
+    return vim.deep_equal(lines, expected) and result.applied == true, table.concat(lines, ' | ') .. ' ' .. vim.inspect(result)
+  end)
+
+  check(':SinumerikRenumber shows the refusal of the server', function()
+    local bufnr = vim.api.nvim_get_current_buf()
+    local before = vim.api.nvim_buf_get_lines(bufnr, 0, -1, false)
+    local refused, problem
+    require('sinumerik').renumber(bufnr, { start = 10, step = 0, mode = 'keep' }, function(value, err)
+      refused, problem = value, err
+    end)
+    vim.wait(15000, function()
+      return refused ~= nil or problem ~= nil
+    end, 20)
+    local after = vim.api.nvim_buf_get_lines(bufnr, 0, -1, false)
+    return refused == nil and type(problem) == 'string' and problem:find('step', 1, true) ~= nil and vim.deep_equal(before, after),
+      'answer ' .. vim.inspect(refused) .. ', error ' .. tostring(problem)
+  end)
+
+  check(':SinumerikFormat normalises spacing and case, and one undo takes it back', function()
+    local bufnr, attached = scratch('format.mpf', { 'n10 g0x10  y5', 'N20 g1 x=ic( 5 ) f100', 'm30' })
+    if not attached then
+      return false, 'no client for the scratch buffer'
+    end
+    local result, problem = run_command('format', 'SinumerikFormat')
+    if problem then
+      return false, problem
+    end
+    local lines = vim.api.nvim_buf_get_lines(bufnr, 0, -1, false)
+    if not (vim.deep_equal(lines, { 'N10 G0 X10 Y5', 'N20 G1 X=IC(5) F100', 'M30' }) and result.applied == true) then
+      return false, table.concat(lines, ' | ') .. ' ' .. vim.inspect(result)
+    end
+    -- The whole edit is one undo step.
+    vim.cmd('undo')
+    local undone = vim.api.nvim_buf_get_lines(bufnr, 0, -1, false)
+    return vim.deep_equal(undone, { 'n10 g0x10  y5', 'N20 g1 x=ic( 5 ) f100', 'm30' }), 'after one undo: ' .. table.concat(undone, ' | ')
+  end)
+
+  -- The program both editors' tests navigate: line 4 (0-based) jumps forward to FINISH on line 7,
+  -- line 6 backward to START on line 1; DEPTH is declared on line 0 and used on line 5.
+  local navigation = vim.fn.readfile(repository .. '/fixtures/editors/navigation.mpf')
+  local nav, nav_attached = scratch('navigation.mpf', navigation)
+
+  local function request(method, line, character)
+    local params = { textDocument = { uri = vim.uri_from_bufnr(nav) }, position = { line = line, character = character } }
+    local results = {}
+    for _, answer in pairs(vim.lsp.buf_request_sync(nav, method, params, 10000) or {}) do
+      if answer.err then
+        error(method .. ': ' .. vim.inspect(answer.err))
+      end
+      table.insert(results, answer.result)
+    end
+    return results[1]
+  end
+
+  check('go to definition (gd with vim.lsp.buf.definition) finds the label and the DEF', function()
+    if not nav_attached then
+      return false, 'no client for the scratch buffer'
+    end
+    local function target_line(line, word)
+      local answer = request('textDocument/definition', line, navigation[line + 1]:find(word, 1, true))
+      if answer and answer[1] then
+        answer = answer[1]
+      end
+      local range = answer and (answer.targetSelectionRange or answer.range)
+      return range and range.start.line
+    end
+    local found = { target_line(4, 'FINISH'), target_line(6, 'START'), target_line(5, 'DEPTH') }
+    return vim.deep_equal(found, { 7, 1, 0 }), vim.inspect(found)
+  end)
+
+  check('completion (omnifunc) offers the labels a jump reaches and G functions with their group', function()
+    local function labels(answer)
+      local items = answer and (answer.items or answer) or {}
+      local names = {}
+      for _, item in ipairs(items) do
+        table.insert(names, item.label)
+      end
+      return names, items
+    end
+    local forward = labels(request('textDocument/completion', 4, #'N20 IF R1 > 0 GOTOF '))
+    local backward = labels(request('textDocument/completion', 6, #'N40 IF R2 > 0 GOTOB '))
+    local _, g_items = labels(request('textDocument/completion', 5, #'N30 G1'))
+    local g17
+    for _, item in ipairs(g_items) do
+      if item.label == 'G17' then
+        g17 = item
+      end
+    end
+    local ok = vim.deep_equal(forward, { 'FINISH' }) and vim.deep_equal(backward, { 'START' })
+      and g17 ~= nil and (g17.detail or ''):find('group 6', 1, true) ~= nil
+      and vim.bo[nav].omnifunc == 'v:lua.vim.lsp.omnifunc'
+    return ok, vim.inspect({ forward = forward, backward = backward, g17 = g17, omnifunc = vim.bo[nav].omnifunc })
   end)
 end
 

@@ -3,6 +3,7 @@
 
 import * as vscode from 'vscode';
 import { LanguageServer } from './vscode/languageServer';
+import { formatProgram, renumberBlocks } from './vscode/programCommands';
 import { ModalStatusBar } from './vscode/statusBar';
 import { ToolpathPanel } from './vscode/toolpathPanel';
 
@@ -18,6 +19,10 @@ export async function activate(context: vscode.ExtensionContext): Promise<void> 
     statusBar,
     vscode.commands.registerCommand('sinumerik.showToolpath', () => ToolpathPanel.show(context, server!)),
     vscode.commands.registerCommand('sinumerik.restartServer', () => server!.restart()),
+    // Ids of their own: the language client registers the server's `sinumerik.renumber` and
+    // `sinumerik.format` as VS Code commands itself.
+    vscode.commands.registerCommand('sinumerik.renumberBlocks', () => renumberBlocks(context, server!)),
+    vscode.commands.registerCommand('sinumerik.formatProgram', () => formatProgram(server!)),
   );
   await server.start();
 }

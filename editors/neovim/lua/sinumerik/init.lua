@@ -1,9 +1,15 @@
 -- The SINUMERIK language server in Neovim: starts `sinumerik-lsp serve` for buffers of filetype
 -- `sinumerik` (vim.lsp.start where it exists, vim.lsp.start_client on Neovim 0.7), passes the
--- settings, and lists the resolved block end points in the quickfix list (:SinumerikPreview).
+-- settings, lists the resolved block end points in the quickfix list (:SinumerikPreview), and
+-- renumbers and formats programs with the server's commands (:SinumerikRenumber, :SinumerikFormat).
 local M = {}
 
 local PREVIEW_COMMAND = 'sinumerik.endpointPreview'
+local RENUMBER_COMMAND = 'sinumerik.renumber'
+local FORMAT_COMMAND = 'sinumerik.format'
+-- The largest block number the server writes (a signed 32-bit integer, like other NC integers).
+local MAX_BLOCK_NUMBER = 2147483647
+M.NUMBERING_MODES = { 'keep', 'all', 'drop' }
 
 local defaults = {
   -- The server command; the binary must be on PATH unless a full path is given.
@@ -155,16 +161,24 @@ function M.describe_move(move)
   return table.concat(parts, ' ')
 end
 
---- Fills the quickfix list with the end point of every block of `bufnr` that moves, and opens it.
---- `done(count | nil, error)` is called when the answer came (for scripts and tests).
-function M.preview(bufnr, done)
-  bufnr = (bufnr == nil or bufnr == 0) and vim.api.nvim_get_current_buf() or bufnr
+--- The sinumerik client of `bufnr`; without one, warns and calls `done(nil, 'no server')`.
+local function client_or_warn(bufnr, done)
   local client = M.client(bufnr)
   if not client then
     vim.notify('sinumerik: no language server runs for this buffer', vim.log.levels.WARN)
     if done then
       done(nil, 'no server')
     end
+  end
+  return client
+end
+
+--- Fills the quickfix list with the end point of every block of `bufnr` that moves, and opens it.
+--- `done(count | nil, error)` is called when the answer came (for scripts and tests).
+function M.preview(bufnr, done)
+  bufnr = (bufnr == nil or bufnr == 0) and vim.api.nvim_get_current_buf() or bufnr
+  local client = client_or_warn(bufnr, done)
+  if not client then
     return
   end
   local params = { command = PREVIEW_COMMAND, arguments = { { uri = vim.uri_from_bufnr(bufnr) } } }
@@ -190,6 +204,115 @@ function M.preview(bufnr, done)
   end, bufnr)
 end
 
+--- Reads the arguments of `:SinumerikRenumber [start] [step] [keep|all|drop]`: the mode may stand
+--- anywhere, the first number is the start and the second the step. Returns the options
+--- `{ start, step, mode }` (defaults 10, 10, keep), or nil and the reason.
+function M.renumber_options(args)
+  local options = { start = 10, step = 10, mode = 'keep' }
+  local numbers = {}
+  for _, word in ipairs(args or {}) do
+    if vim.tbl_contains(M.NUMBERING_MODES, word) then
+      options.mode = word
+    elseif word:match('^%d+$') then
+      table.insert(numbers, tonumber(word))
+    else
+      return nil, ('"%s" is neither a block number nor keep, all or drop'):format(word)
+    end
+  end
+  if #numbers > 2 then
+    return nil, 'give at most a start and a step'
+  end
+  options.start = numbers[1] or options.start
+  options.step = numbers[2] or options.step
+  if options.step < 1 then
+    return nil, 'the step must be at least 1'
+  end
+  if options.start > MAX_BLOCK_NUMBER or options.step > MAX_BLOCK_NUMBER then
+    return nil, ('block numbers go up to %d'):format(MAX_BLOCK_NUMBER)
+  end
+  return options
+end
+
+--- What the user is told of the answer `{ applied, edits }` to `what`: the message and its level.
+function M.describe_outcome(what, result)
+  if type(result) ~= 'table' or type(result.applied) ~= 'boolean' or type(result.edits) ~= 'number' then
+    return what .. ': the server gave an answer the plugin does not understand: ' .. vim.inspect(result), vim.log.levels.ERROR
+  end
+  if result.edits == 0 then
+    return what .. ': nothing to change', vim.log.levels.INFO
+  end
+  if not result.applied then
+    return what .. ': the edit was not applied (was the buffer changed meanwhile?)', vim.log.levels.ERROR
+  end
+  return ('%s: %d %s applied'):format(what, result.edits, result.edits == 1 and 'change' or 'changes'), vim.log.levels.INFO
+end
+
+--- Sends the server command `command` for `bufnr`; the server edits the buffer with
+--- workspace/applyEdit, which Neovim's LSP client applies. `done(result | nil, error)` is called
+--- when the answer came (for scripts and tests).
+local function rewrite(bufnr, what, command, argument, done)
+  bufnr = (bufnr == nil or bufnr == 0) and vim.api.nvim_get_current_buf() or bufnr
+  local client = client_or_warn(bufnr, done)
+  if not client then
+    return
+  end
+  argument.uri = vim.uri_from_bufnr(bufnr)
+  local params = { command = command, arguments = { argument } }
+  client.request('workspace/executeCommand', params, function(err, result)
+    if err then
+      local message = err.message or vim.inspect(err)
+      vim.notify('sinumerik: ' .. what .. ' failed: ' .. message, vim.log.levels.ERROR)
+      if done then
+        done(nil, message)
+      end
+      return
+    end
+    local message, level = M.describe_outcome(what, result)
+    vim.notify('sinumerik: ' .. message, level)
+    if done then
+      done(result, level == vim.log.levels.ERROR and message or nil)
+    end
+  end, bufnr)
+end
+
+--- Renumbers the blocks of `bufnr` with `options` `{ start, step, mode }` (see renumber_options).
+function M.renumber(bufnr, options, done)
+  rewrite(bufnr, 'renumbering', RENUMBER_COMMAND, vim.deepcopy(options), done)
+end
+
+--- Formats `bufnr` with the server's `sinumerik.format` (the same edits as vim.lsp.buf.format()).
+function M.format(bufnr, done)
+  rewrite(bufnr, 'formatting', FORMAT_COMMAND, {}, done)
+end
+
+--- The buffer-local commands of a SINUMERIK buffer, and completion with <C-x><C-o> from the server
+--- (Neovim 0.7 does not set 'omnifunc' for LSP buffers itself; one set by the user stays).
+function M.prepare_buffer(bufnr)
+  if vim.bo[bufnr].omnifunc == '' then
+    vim.bo[bufnr].omnifunc = 'v:lua.vim.lsp.omnifunc'
+  end
+  vim.api.nvim_buf_create_user_command(bufnr, 'SinumerikRenumber', function(command)
+    local options, problem = M.renumber_options(command.fargs)
+    if not options then
+      vim.notify('sinumerik: :SinumerikRenumber [start] [step] [keep|all|drop]: ' .. problem, vim.log.levels.ERROR)
+      return
+    end
+    M.renumber(0, options)
+  end, {
+    nargs = '*',
+    -- Like customlist: Neovim does not filter what the function returns.
+    complete = function(lead)
+      return vim.tbl_filter(function(mode)
+        return mode:sub(1, #lead) == lead
+      end, M.NUMBERING_MODES)
+    end,
+    desc = 'Renumber the blocks: start (10), step (10), keep, all or drop existing numbers (keep)',
+  })
+  vim.api.nvim_buf_create_user_command(bufnr, 'SinumerikFormat', function()
+    M.format(0)
+  end, { desc = 'Normalise spacing and letter case without changing what a block means' })
+end
+
 function M.setup(options)
   M.options = vim.tbl_deep_extend('force', vim.deepcopy(defaults), options or {})
   local group = vim.api.nvim_create_augroup('sinumerik', { clear = true })
@@ -197,6 +320,7 @@ function M.setup(options)
     group = group,
     pattern = 'sinumerik',
     callback = function(args)
+      M.prepare_buffer(args.buf)
       M.start(args.buf)
     end,
   })
@@ -206,6 +330,7 @@ function M.setup(options)
   -- Buffers that were opened before setup.
   for _, buf in ipairs(vim.api.nvim_list_bufs()) do
     if vim.api.nvim_buf_is_loaded(buf) and vim.bo[buf].filetype == 'sinumerik' then
+      M.prepare_buffer(buf)
       M.start(buf)
     end
   end

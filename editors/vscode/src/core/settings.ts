@@ -10,6 +10,8 @@ export interface ServerSettings {
   machineKind: MachineKind;
   /** Empty: the server looks for sinumerik.toml next to each program. */
   configFile: string;
+  /** Folders of cycles and subprograms outside the workspace that the server indexes too. */
+  cycleFolders: string[];
   trace: { server: Trace };
 }
 
@@ -22,10 +24,14 @@ function oneOf<T extends string>(value: unknown, allowed: readonly T[], fallback
 
 export function serverSettings(read: SettingReader): ServerSettings {
   const configFile = read('configFile');
+  const cycleFolders = read('cycleFolders');
   return {
     inlayHints: oneOf(read('inlayHints'), ['off', 'notPlain', 'all'] as const, 'notPlain'),
     machineKind: oneOf(read('machineKind'), ['mill', 'turn'] as const, 'mill'),
     configFile: typeof configFile === 'string' ? configFile.trim() : '',
+    cycleFolders: Array.isArray(cycleFolders)
+      ? cycleFolders.filter((folder): folder is string => typeof folder === 'string').map((folder) => folder.trim()).filter((folder) => folder !== '')
+      : [],
     trace: { server: oneOf(read('trace.server'), ['off', 'messages', 'verbose'] as const, 'off') },
   };
 }
@@ -33,7 +39,7 @@ export function serverSettings(read: SettingReader): ServerSettings {
 /** What a change of settings needs: a new server process (another binary) or just a notification. */
 export function changeNeeds(affects: (key: string) => boolean): 'restart' | 'notify' | 'nothing' {
   if (affects('sinumerik.server.path')) return 'restart';
-  if (['inlayHints', 'machineKind', 'configFile', 'trace.server'].some((key) => affects(`sinumerik.${key}`))) {
+  if (['inlayHints', 'machineKind', 'configFile', 'cycleFolders', 'trace.server'].some((key) => affects(`sinumerik.${key}`))) {
     return 'notify';
   }
   return 'nothing';

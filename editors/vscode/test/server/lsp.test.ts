@@ -4,64 +4,34 @@
 // without a restart. tests/run-all.sh builds the binary first.
 
 import assert from 'node:assert/strict';
-import { spawn, type ChildProcess } from 'node:child_process';
 import * as fs from 'node:fs';
 import * as path from 'node:path';
 import { after, before, test } from 'node:test';
 import { pathToFileURL } from 'node:url';
-import { createMessageConnection, StreamMessageReader, StreamMessageWriter, type MessageConnection } from 'vscode-jsonrpc/node';
+import type { MessageConnection } from 'vscode-jsonrpc/node';
 import { ToolpathLoader } from '../../src/core/loader';
 import type { ToPage } from '../../src/core/messages';
 import { MODAL_STATE_REQUEST, formatModalState, parseModalState } from '../../src/core/modalState';
 import { concatPacked, packMoves, type PackedToolpath } from '../../src/core/packed';
 import { parsePreview } from '../../src/core/preview';
-import { serverSettings, type ServerSettings } from '../../src/core/settings';
+import { serverSettings } from '../../src/core/settings';
 import { EXTENSION_ROOT, readFixture } from '../unit/fixtures';
+import { startServer, type TestServer } from './harness';
 
-const binary = process.env.SINUMERIK_LSP_BIN ?? path.resolve(EXTENSION_ROOT, '..', '..', 'target', 'release', 'sinumerik-lsp');
 const demoPath = path.join(EXTENSION_ROOT, 'test', 'fixtures', 'demo_mill.mpf');
 const demoUri = pathToFileURL(demoPath).toString();
 
-let server: ChildProcess;
+let server: TestServer;
 let connection: MessageConnection;
-let settings: ServerSettings = serverSettings(() => undefined);
-const diagnostics = new Map<string, unknown[]>();
 
 before(async () => {
-  assert.ok(fs.existsSync(binary), `no server binary at ${binary}: build it with cargo build --release, or set SINUMERIK_LSP_BIN`);
-  server = spawn(binary, ['serve'], { stdio: ['pipe', 'pipe', 'inherit'] });
-  connection = createMessageConnection(new StreamMessageReader(server.stdout!), new StreamMessageWriter(server.stdin!));
-  // What vscode-languageclient answers for workspace/configuration: the section from the settings.
-  connection.onRequest('workspace/configuration', (params: { items: { section?: string }[] }) =>
-    params.items.map((item) => (item.section === 'sinumerik' ? settings : null)),
-  );
-  connection.onRequest('workspace/inlayHint/refresh', () => null);
-  connection.onRequest('client/registerCapability', () => null);
-  connection.onNotification('textDocument/publishDiagnostics', (params: { uri: string; diagnostics: unknown[] }) => {
-    diagnostics.set(params.uri, params.diagnostics);
-  });
-  connection.listen();
-  await connection.sendRequest('initialize', {
-    processId: process.pid,
-    rootUri: pathToFileURL(EXTENSION_ROOT).toString(),
-    capabilities: {
-      workspace: { configuration: true, didChangeConfiguration: { dynamicRegistration: true }, inlayHint: { refreshSupport: true } },
-      textDocument: { inlayHint: {}, hover: { contentFormat: ['markdown', 'plaintext'] } },
-    },
-    initializationOptions: settings,
-  });
-  await connection.sendNotification('initialized', {});
-  await connection.sendNotification('textDocument/didOpen', {
-    textDocument: { uri: demoUri, languageId: 'sinumerik', version: 1, text: fs.readFileSync(demoPath, 'utf8') },
-  });
+  server = await startServer();
+  connection = server.connection;
+  await server.open(demoUri, fs.readFileSync(demoPath, 'utf8'));
 });
 
 after(async () => {
-  if (!connection) return;
-  await connection.sendRequest('shutdown').catch(() => undefined);
-  await connection.sendNotification('exit').catch(() => undefined);
-  connection.dispose();
-  server.kill();
+  await server?.stop();
 });
 
 test('the toolpath loaded range by range equals the CLI preview of the same program', async () => {
@@ -115,16 +85,16 @@ async function inlayHintCount(): Promise<number> {
 }
 
 test('a settings change reaches the running server', async () => {
-  settings = serverSettings((key) => ({ inlayHints: 'all' })[key]);
-  await connection.sendNotification('workspace/didChangeConfiguration', { settings: { sinumerik: settings } });
+  server.settings = serverSettings((key) => ({ inlayHints: 'all' })[key]);
+  await connection.sendNotification('workspace/didChangeConfiguration', { settings: { sinumerik: server.settings } });
   let all = 0;
   for (let i = 0; i < 100 && all === 0; i++) {
     all = await inlayHintCount();
     if (all === 0) await new Promise((resolve) => setTimeout(resolve, 50));
   }
   assert.ok(all >= 20, `${all} hints with inlayHints = all`);
-  settings = serverSettings((key) => ({ inlayHints: 'off' })[key]);
-  await connection.sendNotification('workspace/didChangeConfiguration', { settings: { sinumerik: settings } });
+  server.settings = serverSettings((key) => ({ inlayHints: 'off' })[key]);
+  await connection.sendNotification('workspace/didChangeConfiguration', { settings: { sinumerik: server.settings } });
   let off = all;
   for (let i = 0; i < 100 && off !== 0; i++) {
     off = await inlayHintCount();

@@ -117,6 +117,14 @@ export const recorded = {
   panels: [] as FakePanel[],
   statusItems: [] as FakeStatusBarItem[],
   information: [] as string[],
+  errors: [] as string[],
+  statusMessages: [] as string[],
+  /** The options of every input box shown, and the answers the next ones give (`undefined`: cancelled). */
+  inputBoxes: [] as { value?: string; validateInput?: (value: string) => string | undefined }[],
+  inputAnswers: [] as (string | undefined)[],
+  /** The items of every quick pick shown, and the labels the next ones pick (`undefined`: cancelled). */
+  quickPicks: [] as { label: string }[][],
+  quickPickAnswers: [] as (string | undefined)[],
   shownDocuments: [] as FakeDocument[],
   settings: {} as Record<string, unknown>,
   activeEditorChanged: new EventEmitter<FakeEditor | undefined>(),
@@ -144,6 +152,23 @@ export const window = {
   async showInformationMessage(message: string) {
     recorded.information.push(message);
     return undefined;
+  },
+  async showErrorMessage(message: string) {
+    recorded.errors.push(message);
+    return undefined;
+  },
+  setStatusBarMessage(message: string) {
+    recorded.statusMessages.push(message);
+    return { dispose: () => undefined };
+  },
+  async showInputBox(options: { value?: string; validateInput?: (value: string) => string | undefined }) {
+    recorded.inputBoxes.push(options);
+    return recorded.inputAnswers.shift();
+  },
+  async showQuickPick<T extends { label: string }>(items: T[]) {
+    recorded.quickPicks.push(items);
+    const label = recorded.quickPickAnswers.shift();
+    return items.find((item) => item.label === label);
   },
   onDidChangeActiveTextEditor: recorded.activeEditorChanged.event,
   onDidChangeTextEditorSelection: recorded.selectionChanged.event,

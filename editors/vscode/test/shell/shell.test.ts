@@ -5,6 +5,7 @@ import assert from 'node:assert/strict';
 import { test } from 'node:test';
 import * as vscode from 'vscode';
 import type { ToPage } from '../../src/core/messages';
+import { formatProgram, renumberBlocks } from '../../src/vscode/programCommands';
 import { ModalStatusBar } from '../../src/vscode/statusBar';
 import { ToolpathPanel } from '../../src/vscode/toolpathPanel';
 import type { RequestSender, ServerHandle } from '../../src/vscode/serverHandle';
@@ -119,4 +120,69 @@ test('the status bar shows the modal state at the cursor and hides when the serv
   await wait(200);
   assert.equal(item.visible, false, 'hidden for other languages');
   bar.dispose();
+});
+
+function fakeContext(): vscode.ExtensionContext & { stored: Map<string, unknown> } {
+  const stored = new Map<string, unknown>();
+  const globalState = { get: (key: string) => stored.get(key), update: async (key: string, value: unknown) => void stored.set(key, value) };
+  return { extensionPath: '/ext', globalState, stored } as unknown as vscode.ExtensionContext & { stored: Map<string, unknown> };
+}
+
+test('renumbering asks start, step and mode, validates them, sends the server command and remembers the choice', async () => {
+  fake.window.activeTextEditor = new FakeEditor(new FakeDocument('/work/part.mpf', ['N1 G0 X0']));
+  const context = fakeContext();
+  const server = fakeServer(() => ({ applied: true, edits: 2 }));
+  recorded.inputAnswers.push('100', '5');
+  recorded.quickPickAnswers.push('Drop');
+  const boxes = recorded.inputBoxes.length;
+  await renumberBlocks(context, server);
+  const [startBox, stepBox] = recorded.inputBoxes.slice(boxes);
+  assert.deepEqual([startBox.value, stepBox.value], ['10', '10'], 'the defaults at first');
+  assert.match(startBox.validateInput!('abc') ?? '', /whole number/);
+  assert.equal(startBox.validateInput!('0'), undefined);
+  assert.match(stepBox.validateInput!('0') ?? '', /at least 1/);
+  assert.deepEqual(recorded.quickPicks[recorded.quickPicks.length - 1].map((item) => item.label), ['Keep', 'All', 'Drop']);
+  assert.deepEqual(server.requests, [['workspace/executeCommand', {
+    command: 'sinumerik.renumber', arguments: [{ uri: 'file:///work/part.mpf', start: 100, step: 5, mode: 'drop' }],
+  }]]);
+  assert.equal(recorded.statusMessages[recorded.statusMessages.length - 1], 'Renumbering: 2 changes applied.');
+
+  // The next run starts from the last choice; cancelling the step box sends nothing.
+  recorded.inputAnswers.push('100', undefined);
+  await renumberBlocks(context, server);
+  assert.deepEqual(recorded.inputBoxes.slice(-2).map((box) => box.value), ['100', '5']);
+  assert.equal(server.requests.length, 1, 'cancelled');
+  recorded.inputAnswers.push('20', '20');
+  recorded.quickPickAnswers.push(undefined);
+  await renumberBlocks(context, server);
+  assert.deepEqual(recorded.quickPicks[recorded.quickPicks.length - 1].map((item) => item.label), ['Drop', 'Keep', 'All']);
+  assert.equal(server.requests.length, 1, 'no mode picked');
+  assert.deepEqual(context.stored.get('sinumerik.renumber.lastChoice'), { start: 100, step: 5, mode: 'drop' });
+});
+
+test('a refusal of the server is shown as an error, and the commands need a SINUMERIK program', async () => {
+  fake.window.activeTextEditor = new FakeEditor(new FakeDocument('/work/part.spf', ['N1 G0 X0']));
+  const refusing = fakeServer(() => Object.assign(new Error('line 3: the jump to N30 has no target now'), { code: -32602 }));
+  recorded.inputAnswers.push('10', '10');
+  recorded.quickPickAnswers.push('Keep');
+  await renumberBlocks(fakeContext(), refusing);
+  assert.equal(recorded.errors[recorded.errors.length - 1], 'Renumbering failed: line 3: the jump to N30 has no target now');
+
+  const formatting = fakeServer(() => ({ applied: true, edits: 0 }));
+  await formatProgram(formatting);
+  assert.deepEqual(formatting.requests, [['workspace/executeCommand', { command: 'sinumerik.format', arguments: [{ uri: 'file:///work/part.spf' }] }]]);
+  assert.equal(recorded.statusMessages[recorded.statusMessages.length - 1], 'Formatting: nothing to change.');
+  await formatProgram(fakeServer(() => ({ applied: false, edits: 3 })));
+  assert.match(recorded.errors[recorded.errors.length - 1], /^Formatting: the editor did not apply the changes/);
+  await formatProgram({ client: undefined, onDidChangeClient: new EventEmitter<RequestSender | undefined>().event });
+  assert.match(recorded.errors[recorded.errors.length - 1], /language server is not running/);
+
+  fake.window.activeTextEditor = new FakeEditor(new FakeDocument('/work/notes.txt', ['x'], 'plaintext'));
+  const other = fakeServer(() => ({ applied: true, edits: 1 }));
+  const boxes = recorded.inputBoxes.length;
+  await renumberBlocks(fakeContext(), other);
+  await formatProgram(other);
+  assert.equal(other.requests.length, 0);
+  assert.equal(recorded.inputBoxes.length, boxes, 'nothing is asked');
+  assert.match(recorded.information[recorded.information.length - 1], /Open a SINUMERIK program/);
 });

@@ -2,7 +2,9 @@ import assert from 'node:assert/strict';
 import * as fs from 'node:fs';
 import * as path from 'node:path';
 import { test } from 'node:test';
+import { FORMAT_COMMAND, RENUMBER_COMMAND } from '../../src/core/programCommands';
 import { serverSettings } from '../../src/core/settings';
+import { DECLARED_TOKEN_MODIFIERS, DECLARED_TOKEN_TYPES, KNOWN_TOKEN_MODIFIERS, KNOWN_TOKEN_TYPES, STANDARD_TOKEN_MODIFIERS, STANDARD_TOKEN_TYPES, TOKEN_SCOPES } from './semanticLegend';
 import { EXTENSION_ROOT } from './fixtures';
 
 const read = (file: string) => JSON.parse(fs.readFileSync(path.join(EXTENSION_ROOT, file), 'utf8'));
@@ -29,6 +31,21 @@ test('every contributed command is registered by the extension, and the other wa
   assert.equal(manifest.contributes.commands.find((c: { command: string }) => c.command === 'sinumerik.showToolpath').title, 'Show Toolpath');
 });
 
+test('renumbering and formatting are in the palette and the context menu of SINUMERIK programs', () => {
+  const commands = ['sinumerik.renumberBlocks', 'sinumerik.formatProgram'];
+  const titles = commands.map((id) => manifest.contributes.commands.find((c: { command: string }) => c.command === id)?.title);
+  assert.deepEqual(titles, ['Renumber blocks', 'Format program']);
+  for (const menu of ['commandPalette', 'editor/context']) {
+    for (const id of commands) {
+      const entry = manifest.contributes.menus[menu].find((item: { command: string }) => item.command === id);
+      assert.equal(entry?.when, 'editorLangId == sinumerik', `${id} in ${menu}`);
+    }
+  }
+  // The language client registers the server's command ids itself; a second registration would fail.
+  const contributed = manifest.contributes.commands.map((c: { command: string }) => c.command);
+  assert.ok(!contributed.includes(RENUMBER_COMMAND) && !contributed.includes(FORMAT_COMMAND));
+});
+
 test('the settings the server receives are the ones VS Code offers, with the same values', () => {
   const properties = manifest.contributes.configuration.properties;
   for (const key of ['inlayHints', 'machineKind', 'trace.server']) {
@@ -44,6 +61,9 @@ test('the settings the server receives are the ones VS Code offers, with the sam
     assert.equal(property.default, fallback, `${key}: same default`);
   }
   assert.ok(properties['sinumerik.configFile'] && properties['sinumerik.server.path']);
+  const folders = properties['sinumerik.cycleFolders'];
+  assert.deepEqual([folders.type, folders.items.type, folders.default], ['array', 'string', []]);
+  assert.deepEqual(serverSettings((k) => (k === 'cycleFolders' ? folders.default : undefined)).cycleFolders, []);
 });
 
 test('comments, folding and indentation follow the control structures', () => {
@@ -61,4 +81,40 @@ test('comments, folding and indentation follow the control structures', () => {
   for (const line of closes) assert.ok(end.test(line) && dedent.test(line), `closes: ${line}`);
   assert.ok(indent.test('ELSE') && dedent.test('N50 ELSE'), 'ELSE closes and opens');
   assert.ok(!end.test('ENDIFX=1') && !end.test('N10 X10'));
+});
+
+function grammarScopes(): Set<string> {
+  const names = new Set<string>();
+  const walk = (value: unknown): void => {
+    if (Array.isArray(value)) value.forEach(walk);
+    else if (typeof value === 'object' && value !== null) {
+      for (const [key, inner] of Object.entries(value)) {
+        if (key === 'name' && typeof inner === 'string') names.add(inner);
+        else walk(inner);
+      }
+    }
+  };
+  walk(read(manifest.contributes.grammars[0].path));
+  return names;
+}
+
+test('semantic token kinds are declared and mapped to the scopes the grammar gives the same words', () => {
+  for (const [selector, scopes] of Object.entries(TOKEN_SCOPES)) {
+    const [type, ...modifiers] = selector.split('.');
+    assert.ok(KNOWN_TOKEN_TYPES.has(type), `${selector}: the type is standard or declared`);
+    for (const modifier of modifiers) assert.ok(KNOWN_TOKEN_MODIFIERS.has(modifier), `${selector}: the modifier is standard or declared`);
+    assert.ok(scopes.length > 0 && scopes.every((scope) => /^(comment|constant|entity|invalid|keyword|storage|string|support|variable)\..*\.sinumerik$/.test(scope)), `${selector}: ${scopes}`);
+  }
+  for (const type of DECLARED_TOKEN_TYPES) {
+    assert.ok(!STANDARD_TOKEN_TYPES.has(type.id), `${type.id} is not declared twice`);
+    assert.ok(TOKEN_SCOPES[type.id], `${type.id} has a scope`);
+    if (type.superType) assert.ok(STANDARD_TOKEN_TYPES.has(type.superType), `${type.id}: super type ${type.superType}`);
+  }
+  for (const modifier of DECLARED_TOKEN_MODIFIERS) assert.ok(!STANDARD_TOKEN_MODIFIERS.has(modifier), modifier);
+  // The words the grammar colours too get its scopes, so that a theme shows them alike before the
+  // server answers and after.
+  const grammar = grammarScopes();
+  for (const type of ['comment', 'string', 'number', 'gcode', 'axis', 'address', 'modifier', 'variable', 'rParameter', 'systemVariable', 'label', 'blockNumber', 'function']) {
+    assert.ok(grammar.has(TOKEN_SCOPES[type]?.[0]), `${type}: ${TOKEN_SCOPES[type]} is a scope of the grammar`);
+  }
 });

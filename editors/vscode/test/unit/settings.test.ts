@@ -29,17 +29,21 @@ test('when no server exists the message says what was tried and how to fix it', 
 });
 
 test('settings are passed with their defaults and invalid values replaced', () => {
-  const values: Record<string, unknown> = { inlayHints: 'all', machineKind: 'lathe', configFile: ' /m/sinumerik.toml ', 'trace.server': 'verbose' };
+  const values: Record<string, unknown> = {
+    inlayHints: 'all', machineKind: 'lathe', configFile: ' /m/sinumerik.toml ', cycleFolders: [' /nc/cycles ', '', 7, 'cst'], 'trace.server': 'verbose',
+  };
   assert.deepEqual(serverSettings((key) => values[key]), {
-    inlayHints: 'all', machineKind: 'mill', configFile: '/m/sinumerik.toml', trace: { server: 'verbose' },
+    inlayHints: 'all', machineKind: 'mill', configFile: '/m/sinumerik.toml', cycleFolders: ['/nc/cycles', 'cst'], trace: { server: 'verbose' },
   });
-  assert.deepEqual(serverSettings(() => undefined), { inlayHints: 'notPlain', machineKind: 'mill', configFile: '', trace: { server: 'off' } });
+  assert.deepEqual(serverSettings(() => undefined), { inlayHints: 'notPlain', machineKind: 'mill', configFile: '', cycleFolders: [], trace: { server: 'off' } });
+  assert.deepEqual(serverSettings((key) => (key === 'cycleFolders' ? '/nc/cycles' : undefined)).cycleFolders, [], 'not a list');
 });
 
 test('only a new server path needs a restart; other settings are sent to the running server', () => {
   assert.equal(changeNeeds((key) => key === 'sinumerik.server.path'), 'restart');
   assert.equal(changeNeeds((key) => key === 'sinumerik.machineKind'), 'notify');
   assert.equal(changeNeeds((key) => key === 'sinumerik.inlayHints'), 'notify');
+  assert.equal(changeNeeds((key) => key === 'sinumerik.cycleFolders'), 'notify');
   assert.equal(changeNeeds((key) => key === 'editor.fontSize'), 'nothing');
 });
 

@@ -1,0 +1,166 @@
+//! The cross-file findings (W301–W307) of an open document, published in the same
+//! `publishDiagnostics` as its analysis's diagnostics. They are computed off the async threads after
+//! the document's index entry is rebuilt (debounced, see `workspace.rs`); between recomputations
+//! every edit shifts their lines (an O(findings) loop, nothing proportional to the document), so they
+//! stay on their blocks. A generation counter tells the publishing worker that they changed after it
+//! wrote its message, so it writes again instead of publishing an outdated set.
+
+use crate::diagnostics::LineDiagnostic;
+use crate::lsp::convert::{diagnostics_json, PositionEncoding};
+use crate::lsp::documents::{lock, Analysed};
+use crate::lsp::text_document::RopeLineChange;
+use std::sync::{Arc, Mutex};
+
+/// The latest cross-file findings of one document.
+#[derive(Debug, Default)]
+pub struct ExtraDiagnostics {
+    items: Vec<LineDiagnostic>,
+    /// The revision of the last edit whose line change was applied to `items`: findings computed for
+    /// an older text would land on the wrong lines.
+    shifted_to: u64,
+    /// Counts every change of `items`.
+    generation: u64,
+}
+
+impl ExtraDiagnostics {
+    /// Follows an edit that made the document's text revision `revision`: findings on lines after
+    /// the edited range move with them, findings on removed lines go.
+    pub fn on_edit(&mut self, change: Option<RopeLineChange>, revision: u64) {
+        let Some(change) = change else {
+            return;
+        };
+        self.shifted_to = revision;
+        if self.items.is_empty() {
+            return;
+        }
+        // Without clamping (unbounded line counts) the conversion gives the change's own numbers.
+        let change = change.to_core(usize::MAX, usize::MAX);
+        let old_end = change.first + change.removed;
+        let new_end = change.first + change.inserted;
+        self.items.retain_mut(|item| {
+            if item.line < change.first {
+                true
+            } else if item.line >= old_end {
+                item.line = item.line - old_end + new_end;
+                true
+            } else {
+                // An edited line keeps its findings while it still exists.
+                item.line < new_end
+            }
+        });
+        self.generation += 1;
+    }
+
+    /// Replaces the findings with ones computed for text revision `computed_for`. Refused (false)
+    /// when an edit came since, whose debounced update computes them again; false also when
+    /// nothing changed.
+    pub fn replace(&mut self, items: Vec<LineDiagnostic>, computed_for: u64) -> bool {
+        if computed_for < self.shifted_to || items == self.items {
+            return false;
+        }
+        self.items = items;
+        self.generation += 1;
+        true
+    }
+
+    pub fn generation(&self) -> u64 {
+        self.generation
+    }
+}
+
+/// The analysis's JSON array of diagnostics with the cross-file findings added, and the generation
+/// of those findings. Without findings the array is returned as it is (no copy).
+pub fn with_extra(
+    array: Arc<Vec<u8>>,
+    extra: &Mutex<ExtraDiagnostics>,
+    analysed: &Analysed,
+    encoding: PositionEncoding,
+) -> (Arc<Vec<u8>>, u64) {
+    let extra = lock(extra);
+    if extra.items.is_empty() {
+        return (array, extra.generation);
+    }
+    let lines = analysed.lines();
+    let all_ascii = analysed.rope.len_bytes() == analysed.rope.len_chars();
+    let line_count = crate::analysis::document::LineSource::line_count(&lines);
+    let items: Vec<LineDiagnostic> = extra
+        .items
+        .iter()
+        .filter(|item| item.line < line_count)
+        .cloned()
+        .collect();
+    let added = diagnostics_json(
+        &items,
+        |line| crate::analysis::document::LineSource::line(&lines, line),
+        all_ascii,
+        encoding,
+    );
+    (Arc::new(join_arrays(&array, &added)), extra.generation)
+}
+
+/// `[a...]` and `[b...]` as one array `[a..., b...]`.
+fn join_arrays(first: &[u8], second: &[u8]) -> Vec<u8> {
+    let first_inner = &first[1..first.len().saturating_sub(1).max(1)];
+    let second_inner = &second[1..second.len().saturating_sub(1).max(1)];
+    let mut out = Vec::with_capacity(first.len() + second.len());
+    out.push(b'[');
+    out.extend_from_slice(first_inner);
+    if !first_inner.is_empty() && !second_inner.is_empty() {
+        out.push(b',');
+    }
+    out.extend_from_slice(second_inner);
+    out.push(b']');
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::diagnostics::{Code, Diagnostic, Span};
+
+    fn finding(line: usize) -> LineDiagnostic {
+        LineDiagnostic {
+            line,
+            diagnostic: Diagnostic::new(Code::UnexpectedCharacter, Span::new(0, 1), "x"),
+        }
+    }
+
+    #[test]
+    fn arrays_join_also_when_one_is_empty() {
+        assert_eq!(join_arrays(b"[1,2]", b"[3]"), b"[1,2,3]");
+        assert_eq!(join_arrays(b"[]", b"[3]"), b"[3]");
+        assert_eq!(join_arrays(b"[1]", b"[]"), b"[1]");
+    }
+
+    #[test]
+    fn findings_follow_inserted_and_removed_lines() {
+        let mut extra = ExtraDiagnostics::default();
+        assert!(extra.replace(vec![finding(1), finding(5), finding(9)], 1));
+        // Lines 4..=6 became one line: the finding on line 5 goes with its line, 9 moves up to 7.
+        let rope_before = ropey::Rope::from_str("0\n1\n2\n3\n4\n5\n6\n7\n8\n9\n");
+        let mut text = crate::lsp::text_document::DocumentText {
+            rope: rope_before,
+            version: 1,
+        };
+        let change = crate::lsp::text_document::apply_changes(
+            &mut text,
+            &[tower_lsp_server::ls_types::TextDocumentContentChangeEvent {
+                range: Some(tower_lsp_server::ls_types::Range::new(
+                    tower_lsp_server::ls_types::Position::new(4, 0),
+                    tower_lsp_server::ls_types::Position::new(6, 1),
+                )),
+                range_length: None,
+                text: "x".into(),
+            }],
+            2,
+            PositionEncoding::Utf16,
+        )
+        .unwrap();
+        extra.on_edit(change, 2);
+        let lines: Vec<usize> = extra.items.iter().map(|item| item.line).collect();
+        assert_eq!(lines, vec![1, 7]);
+        // Findings computed for the text before the edit are refused.
+        assert!(!extra.replace(vec![finding(3)], 1));
+        assert!(extra.replace(vec![finding(3)], 2));
+    }
+}
