@@ -3,7 +3,9 @@
 //! generator, so a failure names its seed) replace line ranges with lines drawn from a pool of blocks
 //! that change the modal state, open and close structures, define macros and move axes.
 
-use sinumerik_lsp::analysis::document::{DocumentAnalysis, TextLines, CHECKPOINT_INTERVAL};
+use sinumerik_lsp::analysis::document::{
+    DocumentAnalysis, LineSource, TextLines, CHECKPOINT_INTERVAL,
+};
 use sinumerik_lsp::analysis::{diagnose_program, ProgramKind};
 use sinumerik_lsp::config::MachineConfig;
 use sinumerik_lsp::diagnostics::LineDiagnostic;
@@ -343,4 +345,126 @@ fn a_changed_increment_is_carried_to_the_end_without_reading_it_again() {
         rounded_debug(&analysis.block_report(&source, 6001)),
         rounded_debug(&fresh.block_report(&source, 6001))
     );
+}
+
+/// Checks that the two-thread analysis of `text` is the one-thread analysis; returns the lines the
+/// two-thread analysis read.
+fn check_parallel_analysis(text: &str, context: &str) -> usize {
+    let config = Arc::new(MachineConfig::mill());
+    let source = TextLines::new(text);
+    let mut helper_source = TextLines::new(text);
+    let parallel = DocumentAnalysis::new_in_parallel(
+        &source,
+        &mut helper_source,
+        config.clone(),
+        ProgramKind::Main,
+    );
+    let sequential = DocumentAnalysis::new(&source, config, ProgramKind::Main);
+    assert_same_diagnostics(parallel.diagnostics(), sequential.diagnostics(), context);
+    let line_count = source.line_count();
+    let mut random = Random(0x5EED ^ line_count as u64);
+    for _ in 0..20 {
+        let line = random.below(line_count + 1);
+        assert_eq!(
+            rounded_debug(&parallel.block_report(&source, line)),
+            rounded_debug(&sequential.block_report(&source, line)),
+            "{context}: block report of line {line}"
+        );
+        let range = line..(line + 600).min(line_count);
+        assert_eq!(
+            rounded_debug(&parallel.moves(&source, range.clone())),
+            rounded_debug(&sequential.moves(&source, range.clone())),
+            "{context}: moves of lines {range:?}"
+        );
+    }
+    parallel.lines_read_by_last_update()
+}
+
+fn program(header: &[&str], body: impl Fn(usize) -> String, line_count: usize) -> String {
+    let mut text: String = header.iter().map(|line| format!("{line}\n")).collect();
+    for index in header.len()..line_count {
+        text.push_str(&body(index));
+        text.push('\n');
+    }
+    text
+}
+
+#[test]
+fn a_program_analysed_on_two_threads_reads_each_line_once_when_the_middle_is_guessed_right() {
+    let lines = 40 * CHECKPOINT_INTERVAL;
+    let text = program(
+        &[
+            "G17 G90 G71 G54",
+            "T1 D1",
+            "M6",
+            "G0 X0 Y0 Z50",
+            "G1 Z5 F2500",
+        ],
+        |index| {
+            format!(
+                "N{index} X{}.5 Y{} Z-{}.25",
+                index % 97,
+                index % 13,
+                index % 7
+            )
+        },
+        lines,
+    );
+    let read = check_parallel_analysis(&text, "absolute program");
+    assert_eq!(read, lines, "each line is read once");
+}
+
+#[test]
+fn an_incremental_program_analysed_on_two_threads_carries_the_shift_into_the_second_half() {
+    let lines = 40 * CHECKPOINT_INTERVAL;
+    let text = program(
+        &["G17 G91 G71 G54", "G0 X0 Y0 Z0", "G1 F100"],
+        |index| format!("X0.{} Y-0.{}", index % 9 + 1, index % 7 + 1),
+        lines,
+    );
+    let read = check_parallel_analysis(&text, "incremental program");
+    assert!(
+        read < lines + 2 * CHECKPOINT_INTERVAL,
+        "the second half is not read again ({read} lines read)"
+    );
+}
+
+#[test]
+fn programs_whose_middle_state_cannot_be_guessed_are_read_again_from_the_true_state() {
+    let lines = 40 * CHECKPOINT_INTERVAL;
+    let middle = lines / 2;
+    // A variable defined early and changed in the first half, an IF open across the middle, and
+    // a change of units in the first half that the guess does not see.
+    let text = program(
+        &["DEF REAL DEPTH", "DEPTH=-1", "G90 G1 F100 X0 Y0 Z0"],
+        |index| match index {
+            5000 => "G70".to_string(),
+            6000 => "DEPTH=-2".to_string(),
+            index if index == middle - 700 => "IF R1==0".to_string(),
+            index if index == middle + 700 => "ENDIF".to_string(),
+            index if index % 1000 == 0 => "G1 Z=DEPTH".to_string(),
+            index => format!("X{} Y{}", index % 50, index % 30),
+        },
+        lines,
+    );
+    check_parallel_analysis(&text, "program with state from the first half");
+}
+
+#[test]
+fn random_and_generated_programs_analysed_on_two_threads_match_one_thread() {
+    let mut random = Random(77);
+    for round in 0..3 {
+        let lines: Vec<String> = (0..30 * CHECKPOINT_INTERVAL)
+            .map(|_| random_line(&mut random))
+            .collect();
+        check_parallel_analysis(&joined(&lines), &format!("random program {round}"));
+    }
+    for style in ["cam3d", "inc", "turning", "mixed"] {
+        match generated::generate(style, 40_000) {
+            Some(text) => {
+                check_parallel_analysis(&text, style);
+            }
+            None => eprintln!("skipped {style}: ../shared/bench/gen_program.py is not available"),
+        }
+    }
 }

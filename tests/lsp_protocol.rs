@@ -388,6 +388,40 @@ async fn settings_come_from_initialization_options() {
     client.shutdown().await;
 }
 
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn the_machine_kind_setting_makes_documents_without_a_configuration_file_lathe_programs() {
+    let text = "G90 G0 X40 Z5\nG1 X50\n";
+    let uri = "file:///nonexistent/lathe/part.mpf";
+    let mut mill = TestClient::in_process();
+    mill.initialize(json!({}), json!({})).await;
+    mill.open(uri, 1, text).await;
+    let on_a_mill = mill.hover(uri, 1, 4).await;
+    let mut lathe = TestClient::in_process();
+    lathe
+        .initialize(json!({}), json!({"machineKind": "turn"}))
+        .await;
+    lathe.open(uri, 1, text).await;
+    let on_a_lathe = lathe.hover(uri, 1, 4).await;
+    assert!(
+        on_a_lathe.to_lowercase().contains("diameter") && on_a_lathe.contains("radius 25"),
+        "X50 on a lathe is a diameter, radius 25: {on_a_lathe}"
+    );
+    assert!(
+        !on_a_mill.to_lowercase().contains("diameter"),
+        "{on_a_mill}"
+    );
+    // Switching the setting analyses the open documents again.
+    mill.notify(
+        "workspace/didChangeConfiguration",
+        json!({"settings": {"sinumerik": {"machineKind": "turn"}}}),
+    )
+    .await;
+    mill.diagnostics(uri, 1).await;
+    assert_eq!(mill.hover(uri, 1, 4).await, on_a_lathe);
+    mill.shutdown().await;
+    lathe.shutdown().await;
+}
+
 fn is_warning_about(params: &Value, words: &str) -> bool {
     params["message"]
         .as_str()
@@ -684,4 +718,36 @@ async fn the_outline_and_the_folding_ranges_follow_the_program() {
         .expect("the IF folds");
     assert_eq!(structure["startLine"], 5, "{folds}");
     assert_eq!(structure["endLine"], 6, "{folds}");
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn a_large_program_opened_arrives_whole_and_an_empty_one_stays_empty() {
+    let mut client = initialized_client().await;
+    // Over the size at which the input guard reads the didOpen itself, with text that JSON escapes.
+    let mut text = String::from("G90 G17 G71\n");
+    for index in 0..40_000 {
+        text.push_str(&format!(
+            "N{index} G1 X{}.5 Y=IC({}) F100 ; \"\u{e4}\\\r\n",
+            index % 90,
+            index % 7
+        ));
+        if index % 5000 == 0 {
+            text.push_str("Z=AC17\n");
+        }
+    }
+    let uri = "file:///nonexistent/large.mpf";
+    client.open(uri, 3, &text).await;
+    let diagnostics = client.diagnostics(uri, 3).await;
+    assert_eq!(
+        codes(&diagnostics),
+        expected_codes(&text, ProgramKind::Main),
+        "the diagnostics of the whole text"
+    );
+    assert!(!diagnostics.is_empty());
+    assert_eq!(client.document_text(uri).await, (3, text));
+    let empty = "file:///nonexistent/empty.mpf";
+    client.open(empty, 1, "").await;
+    client.diagnostics(empty, 1).await;
+    assert_eq!(client.document_text(empty).await, (1, String::new()));
+    client.shutdown().await;
 }

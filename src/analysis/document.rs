@@ -28,6 +28,14 @@ use std::sync::Arc;
 /// 0.1 ms); memory is one modal state per interval.
 pub const CHECKPOINT_INTERVAL: usize = 512;
 
+/// A document is analysed on two threads when each half has at least this many lines: below, the
+/// second thread's start costs more than it saves.
+const PARALLEL_HALF_MIN_LINES: usize = 16 * CHECKPOINT_INTERVAL;
+/// The blocks read for the guess of the state in the middle of a document: from its start, and
+/// before the middle.
+const GUESS_HEAD_LINES: usize = 2 * CHECKPOINT_INTERVAL;
+const GUESS_TAIL_LINES: usize = 2 * CHECKPOINT_INTERVAL;
+
 /// A line defines a macro: every line may read differently, so the whole document is analysed again.
 const DEFINES_MACRO: u8 = 1;
 /// A line is a `PROC` header: the document is a subprogram, and starts from another state.
@@ -167,6 +175,37 @@ struct Pass {
     converged_at: Option<usize>,
     /// The end-of-program findings, when the pass ran to the end.
     tail: Vec<LineDiagnostic>,
+    /// The state at the pass's `stop_at` line, when it stopped there.
+    stopped: Option<Checkpoint>,
+}
+
+/// The per-line position reads of the lines from `base` on, which a pass fills in: a pass over part of
+/// the document gets the part of the vector it owns.
+struct PositionReads<'a> {
+    base: usize,
+    reads: &'a mut [u8],
+}
+
+impl PositionReads<'_> {
+    fn get_mut(&mut self, line: usize) -> Option<&mut u8> {
+        self.reads.get_mut(line.checked_sub(self.base)?)
+    }
+
+    /// Whether the lines `range` all read none of `axes` absolutely (lines outside count as reading
+    /// everything).
+    fn none_read(&self, range: Range<usize>, axes: u8) -> bool {
+        let (Some(start), Some(end)) = (
+            range.start.checked_sub(self.base),
+            range.end.checked_sub(self.base),
+        ) else {
+            return false;
+        };
+        self.reads.get(start..end).is_some_and(|reads| {
+            reads
+                .iter()
+                .all(|reads| reads & READS_ALL == 0 && reads & axes == 0)
+        })
+    }
 }
 
 impl DocumentAnalysis {
@@ -191,6 +230,32 @@ impl DocumentAnalysis {
             lines_read: 0,
         };
         analysis.recompute(source);
+        analysis
+    }
+
+    /// Analyses the whole document like [`DocumentAnalysis::new`], reading the second half on another
+    /// thread from `helper_source`, which must give the same lines as `source`.
+    pub fn new_in_parallel(
+        source: &dyn LineSource,
+        helper_source: &mut (dyn LineSource + Send),
+        config: Arc<MachineConfig>,
+        kind: ProgramKind,
+    ) -> DocumentAnalysis {
+        let context = SyntaxContext::new(&config);
+        let mut analysis = DocumentAnalysis {
+            config,
+            kind,
+            context,
+            subprogram: false,
+            line_flags: Vec::new(),
+            position_reads: Vec::new(),
+            checkpoints: Vec::new(),
+            body: Vec::new(),
+            tail: Vec::new(),
+            combined: None,
+            lines_read: 0,
+        };
+        analysis.recompute_in_parallel(source, helper_source);
         analysis
     }
 
@@ -249,13 +314,42 @@ impl DocumentAnalysis {
             std::iter::repeat_n(READS_ALL, inserted),
         );
         let start = self.checkpoints[keep - 1].clone();
+        self.checkpoints.truncate(keep);
+        self.lines_read = 0;
+        self.read_again_from(
+            source,
+            start,
+            first_line + inserted,
+            later,
+            old_region_end,
+            delta,
+        );
+    }
+
+    /// Reads the document again from `start` (one of `self.checkpoints`, which end with it), where
+    /// `later` are the old checkpoints after the changed lines (already moved to the new numbering),
+    /// `changed_end` the first line (new numbering) the change did not touch, and the old findings at
+    /// lines from `old_region_end` on move by `delta` lines (those before it were replaced).
+    fn read_again_from(
+        &mut self,
+        source: &dyn LineSource,
+        start: Checkpoint,
+        changed_end: usize,
+        mut later: Vec<Checkpoint>,
+        old_region_end: usize,
+        delta: isize,
+    ) {
         let mut position_reads = std::mem::take(&mut self.position_reads);
         let pass = self.run_pass(
             source,
             start.clone(),
-            first_line + inserted,
+            changed_end,
             &mut later,
-            &mut position_reads,
+            PositionReads {
+                base: 0,
+                reads: &mut position_reads,
+            },
+            usize::MAX,
         );
         self.position_reads = position_reads;
         // Diagnostics: those before the pass's start stay; the pass's replace what it re-read; the
@@ -299,7 +393,7 @@ impl DocumentAnalysis {
                 self.checkpoints.extend(pass.checkpoints);
             }
         }
-        self.lines_read = pass.lines_read;
+        self.lines_read += pass.lines_read;
         self.combine();
     }
 
@@ -435,8 +529,32 @@ impl DocumentAnalysis {
 
     /// Analyses the whole document again.
     fn recompute(&mut self, source: &dyn LineSource) {
+        let start = self.prepare_from_scratch(source);
         let line_count = source.line_count();
-        self.line_flags = Vec::with_capacity(line_count);
+        let mut position_reads = vec![READS_ALL; line_count];
+        let pass = self.run_pass(
+            source,
+            start.clone(),
+            line_count,
+            &mut [],
+            PositionReads {
+                base: 0,
+                reads: &mut position_reads,
+            },
+            usize::MAX,
+        );
+        self.position_reads = position_reads;
+        self.checkpoints = vec![start];
+        self.checkpoints.extend(pass.checkpoints);
+        self.body = pass.diagnostics;
+        self.tail = pass.tail;
+        self.lines_read = pass.lines_read;
+        self.combine();
+    }
+
+    /// Reads the whole-document facts (macros, `PROC` headers) and gives the state before line 0.
+    fn prepare_from_scratch(&mut self, source: &dyn LineSource) -> Checkpoint {
+        self.line_flags = Vec::with_capacity(source.line_count());
         self.context = SyntaxContext::new(&self.config);
         let mut has_proc_header = false;
         source.for_each_line(0, &mut |_, line| {
@@ -455,26 +573,142 @@ impl DocumentAnalysis {
         if self.subprogram {
             engine.assume_inherited_state();
         }
-        let start = Checkpoint {
+        Checkpoint {
             line: 0,
             engine: engine.snapshot(),
             structure: StructureChecker::default(),
-        };
+        }
+    }
+
+    /// Analyses the whole document on two threads: this one reads the first half; `helper_source`
+    /// (the same text) is read on a second thread from the middle on, starting from a guess of the
+    /// state there. When the first half ends in exactly the guessed state, the second half's results
+    /// stand as they are; otherwise the second half is read again from the true state the way an edit
+    /// is, stopping where the states meet or carrying a shift of positions, so the result is always
+    /// the one of [`DocumentAnalysis::recompute`].
+    fn recompute_in_parallel(
+        &mut self,
+        source: &dyn LineSource,
+        helper_source: &mut (dyn LineSource + Send),
+    ) {
+        let line_count = source.line_count();
+        let middle = line_count / 2 / CHECKPOINT_INTERVAL * CHECKPOINT_INTERVAL;
+        if middle < PARALLEL_HALF_MIN_LINES || helper_source.line_count() != line_count {
+            self.recompute(source);
+            return;
+        }
+        let start = self.prepare_from_scratch(source);
         let mut position_reads = vec![READS_ALL; line_count];
-        let pass = self.run_pass(
-            source,
-            start.clone(),
-            line_count,
-            &mut [],
-            &mut position_reads,
-        );
+        let (first_reads, second_reads) = position_reads.split_at_mut(middle);
+        let this = &*self;
+        let (first, helper) = std::thread::scope(|scope| {
+            let start_of_program = &start;
+            let helper = scope.spawn(move || {
+                let guess = this.guess_state_at(&*helper_source, start_of_program, middle);
+                let second = this.run_pass(
+                    &*helper_source,
+                    guess.clone(),
+                    line_count,
+                    &mut [],
+                    PositionReads {
+                        base: middle,
+                        reads: second_reads,
+                    },
+                    usize::MAX,
+                );
+                (guess, second)
+            });
+            let first = this.run_pass(
+                source,
+                start.clone(),
+                0,
+                &mut [],
+                PositionReads {
+                    base: 0,
+                    reads: first_reads,
+                },
+                middle,
+            );
+            (first, helper.join())
+        });
         self.position_reads = position_reads;
+        self.lines_read = first.lines_read;
         self.checkpoints = vec![start];
-        self.checkpoints.extend(pass.checkpoints);
-        self.body = pass.diagnostics;
-        self.tail = pass.tail;
-        self.lines_read = pass.lines_read;
-        self.combine();
+        self.checkpoints.extend(first.checkpoints);
+        self.body = first.diagnostics;
+        self.tail = Vec::new();
+        let Some(end_of_first) = first.stopped else {
+            // The first half always stops at the middle; should it not, nothing of it is lost.
+            self.recompute(source);
+            return;
+        };
+        self.checkpoints.push(end_of_first.clone());
+        let (guess, second) = match helper {
+            Ok(result) => result,
+            Err(_) => {
+                // The helper thread failed (a bug): the second half is read here instead.
+                self.read_again_from(source, end_of_first, middle + 1, Vec::new(), line_count, 0);
+                return;
+            }
+        };
+        self.lines_read += second.lines_read;
+        self.body.extend(second.diagnostics);
+        self.tail = second.tail;
+        let guessed_right = end_of_first.structure == guess.structure
+            && Engine::from_snapshot(&self.config, end_of_first.engine.clone())
+                .matches(&guess.engine);
+        if guessed_right {
+            self.checkpoints.extend(second.checkpoints);
+            self.combine();
+        } else {
+            // The second half's results are an old analysis of those lines, as after an edit of the
+            // first half: read again from the true state until they agree.
+            self.read_again_from(
+                source,
+                end_of_first,
+                middle + 1,
+                second.checkpoints,
+                middle + 1,
+                0,
+            );
+        }
+    }
+
+    /// A guess of the state before line `middle`: the blocks of the program's start (where its
+    /// settings usually are) followed by those just before `middle` (where the last positions are).
+    /// Only a guess: [`DocumentAnalysis::recompute_in_parallel`] checks it against the true state.
+    fn guess_state_at(
+        &self,
+        source: &dyn LineSource,
+        start: &Checkpoint,
+        middle: usize,
+    ) -> Checkpoint {
+        let mut engine = Engine::from_snapshot(&self.config, start.engine.clone());
+        let mut structure = start.structure.clone();
+        let mut parser = LineParser::new();
+        let mut block = Block::default();
+        let mut findings = Vec::new();
+        let mut structure_findings = Vec::new();
+        let head_end = GUESS_HEAD_LINES.min(middle);
+        let tail_start = middle.saturating_sub(GUESS_TAIL_LINES).max(head_end);
+        for range in [0..head_end, tail_start..middle] {
+            source.for_each_line(range.start, &mut |index, line| {
+                if index >= range.end {
+                    return false;
+                }
+                parser.parse(line, &self.context, &mut block, &mut findings);
+                structure.feed(index, &block, &mut structure_findings);
+                engine.step(line, &block, &mut findings);
+                findings.clear();
+                structure_findings.clear();
+                true
+            });
+        }
+        Checkpoint {
+            line: middle,
+            engine: engine.snapshot(),
+            structure,
+        }
     }
 
     /// Reads the document forward from `start`, taking new checkpoints, until it meets one of
@@ -488,7 +722,8 @@ impl DocumentAnalysis {
         start: Checkpoint,
         changed_end: usize,
         old_checkpoints: &mut [Checkpoint],
-        position_reads: &mut [u8],
+        mut position_reads: PositionReads<'_>,
+        stop_at: usize,
     ) -> Pass {
         let line_count = source.line_count();
         let mut engine = Engine::from_snapshot(&self.config, start.engine);
@@ -504,6 +739,7 @@ impl DocumentAnalysis {
             kept: Vec::new(),
             converged_at: None,
             tail: Vec::new(),
+            stopped: None,
         };
         let first_old = old_checkpoints.partition_point(|checkpoint| checkpoint.line < changed_end);
         let mut next_old = first_old;
@@ -521,19 +757,25 @@ impl DocumentAnalysis {
                     {
                         next_old += 1;
                     }
-                    if let Some(old) = old_checkpoints.get(next_old) {
-                        if old.line == index && old.structure == structure {
-                            if engine.matches(&old.engine) {
-                                pass.converged_at = Some(index);
-                                return false;
-                            }
-                            if index > resume_at {
-                                if let Some(found) = engine.position_shift_from(&old.engine) {
-                                    shift = Some(found);
-                                    return false;
-                                }
-                            }
-                        }
+                    let old = old_checkpoints
+                        .get(next_old)
+                        .filter(|old| old.line == index && old.structure == structure);
+                    if old.is_some_and(|old| engine.matches(&old.engine)) {
+                        pass.converged_at = Some(index);
+                        return false;
+                    }
+                    if index >= stop_at {
+                        pass.stopped = Some(Checkpoint {
+                            line: index,
+                            engine: engine.snapshot(),
+                            structure: structure.clone(),
+                        });
+                        return false;
+                    }
+                    if let Some(found) = old.and_then(|old| engine.position_shift_from(&old.engine))
+                    {
+                        shift = Some(found);
+                        return false;
                     }
                     if index - last_checkpoint >= CHECKPOINT_INTERVAL {
                         last_checkpoint = index;
@@ -591,10 +833,7 @@ impl DocumentAnalysis {
                 let interval_end = old_checkpoints
                     .get(current + 1)
                     .map_or(line_count, |checkpoint| checkpoint.line);
-                let safe = position_reads[interval_start..interval_end]
-                    .iter()
-                    .all(|reads| reads & READS_ALL == 0 && reads & axes == 0);
-                if !safe {
+                if !position_reads.none_read(interval_start..interval_end, axes) {
                     break;
                 }
                 pass.kept.push(interval_start..interval_end);
@@ -623,7 +862,7 @@ impl DocumentAnalysis {
             }
             resume_at = old_checkpoints[current].line;
         }
-        if pass.converged_at.is_none() {
+        if pass.converged_at.is_none() && pass.stopped.is_none() {
             structure.finish(&mut pass.tail);
             for item in &mut pass.tail {
                 item.diagnostic.severity = self.config.severity_of(item.diagnostic.code);

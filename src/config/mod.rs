@@ -11,8 +11,9 @@ use crate::diagnostics::{Code, Severity};
 use std::collections::BTreeMap;
 
 /// The two machine kinds whose reset state and axes differ by default.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum MachineKind {
+    #[default]
     Mill,
     Turn,
 }

@@ -134,19 +134,12 @@ pub fn diagnostics_json<'a>(
     all_ascii: bool,
     encoding: PositionEncoding,
 ) -> Vec<u8> {
-    use std::io::Write;
     let mut array = Vec::with_capacity(2 + diagnostics.len() * 200);
     array.push(b'[');
     let mut current: Option<(usize, Cow<'a, str>)> = None;
     for (index, item) in diagnostics.iter().enumerate() {
         let range = if all_ascii {
-            let line_number = u32::try_from(item.line).unwrap_or(u32::MAX);
-            let span = item.diagnostic.span;
-            let column = |byte: usize| u32::try_from(byte).unwrap_or(u32::MAX);
-            Range::new(
-                Position::new(line_number, column(span.start())),
-                Position::new(line_number, column(span.end().max(span.start()))),
-            )
+            ascii_range(item)
         } else {
             if current.as_ref().map(|(line_idx, _)| *line_idx) != Some(item.line) {
                 current = Some((item.line, line_text(item.line)));
@@ -157,39 +150,77 @@ pub fn diagnostics_json<'a>(
                 .unwrap_or("");
             span_to_range(item.line, line, item.diagnostic.span, encoding)
         };
-        let severity = match item.diagnostic.severity {
-            Severity::Error => 1,
-            Severity::Warning => 2,
-            Severity::Information => 3,
-            Severity::Hint => 4,
-        };
         if index > 0 {
             array.push(b',');
         }
-        let _ = write!(
-            array,
-            r#"{{"range":{{"start":{{"line":{},"character":{}}},"end":{{"line":{},"character":{}}}}},"severity":{severity},"code":"{}","source":"sinumerik","message":"#,
-            range.start.line,
-            range.start.character,
-            range.end.line,
-            range.end.character,
-            item.diagnostic.code.as_str(),
-        );
-        let _ = serde_json::to_writer(&mut array, &item.diagnostic.message);
-        array.push(b'}');
+        write_diagnostic_json(&mut array, range, item);
     }
     array.push(b']');
     array
 }
 
-/// The whole `textDocument/publishDiagnostics` message, header included, with the array of
-/// [`diagnostics_json`], written into one buffer: the array is megabytes for a large program, and is
-/// copied once.
+/// The range of a diagnostic in an ASCII line, where byte offsets are the columns in either encoding.
+pub fn ascii_range(item: &LineDiagnostic) -> Range {
+    let line_number = u32::try_from(item.line).unwrap_or(u32::MAX);
+    let span = item.diagnostic.span;
+    let column = |byte: usize| u32::try_from(byte).unwrap_or(u32::MAX);
+    Range::new(
+        Position::new(line_number, column(span.start())),
+        Position::new(line_number, column(span.end().max(span.start()))),
+    )
+}
+
+/// How every diagnostic object starts; the start line's number follows.
+pub const DIAGNOSTIC_JSON_START: &[u8] = br#"{"range":{"start":{"line":"#;
+/// What comes before the end line's number within a diagnostic object.
+pub const DIAGNOSTIC_JSON_END_LINE: &[u8] = br#""end":{"line":"#;
+
+/// One diagnostic as a JSON object (starting with [`DIAGNOSTIC_JSON_START`]) at `range`.
+pub fn write_diagnostic_json(out: &mut Vec<u8>, range: Range, item: &LineDiagnostic) {
+    use std::io::Write;
+    let severity = match item.diagnostic.severity {
+        Severity::Error => 1,
+        Severity::Warning => 2,
+        Severity::Information => 3,
+        Severity::Hint => 4,
+    };
+    out.extend_from_slice(DIAGNOSTIC_JSON_START);
+    let _ = write!(
+        out,
+        r#"{},"character":{}}},"end":{{"line":{},"character":{}}}}},"severity":{severity},"code":"{}","source":"sinumerik","message":"#,
+        range.start.line,
+        range.start.character,
+        range.end.line,
+        range.end.character,
+        item.diagnostic.code.as_str(),
+    );
+    let _ = serde_json::to_writer(&mut *out, &item.diagnostic.message);
+    out.push(b'}');
+}
+
+/// The whole `textDocument/publishDiagnostics` message in one buffer, header included (the server
+/// sends the pieces of [`publish_diagnostics_frame`] instead; tests read the message whole).
+#[cfg(test)]
 pub fn publish_diagnostics_message(
     uri: &ls_types::Uri,
     version: Option<i32>,
     diagnostics_array: &[u8],
 ) -> Vec<u8> {
+    let (head, tail) = publish_diagnostics_frame(uri, version, diagnostics_array.len());
+    let mut message = Vec::with_capacity(head.len() + diagnostics_array.len() + tail.len());
+    message.extend_from_slice(&head);
+    message.extend_from_slice(diagnostics_array);
+    message.extend_from_slice(&tail);
+    message
+}
+
+/// What comes before (the header included) and after a diagnostics array of `array_length` bytes in
+/// its `textDocument/publishDiagnostics` message: the array itself is sent as it is, without a copy.
+pub fn publish_diagnostics_frame(
+    uri: &ls_types::Uri,
+    version: Option<i32>,
+    array_length: usize,
+) -> (Vec<u8>, Vec<u8>) {
     let mut prefix =
         br#"{"jsonrpc":"2.0","method":"textDocument/publishDiagnostics","params":{"uri":"#.to_vec();
     let _ = serde_json::to_writer(&mut prefix, uri.as_str());
@@ -198,14 +229,10 @@ pub fn publish_diagnostics_message(
         Some(version) => format!(r#","version":{version}}}}}"#),
         None => "}}".to_string(),
     };
-    let length = prefix.len() + diagnostics_array.len() + suffix.len();
-    let header = format!("Content-Length: {length}\r\n\r\n");
-    let mut message = Vec::with_capacity(header.len() + length);
-    message.extend_from_slice(header.as_bytes());
-    message.extend_from_slice(&prefix);
-    message.extend_from_slice(diagnostics_array);
-    message.extend_from_slice(suffix.as_bytes());
-    message
+    let length = prefix.len() + array_length + suffix.len();
+    let mut head = format!("Content-Length: {length}\r\n\r\n").into_bytes();
+    head.extend_from_slice(&prefix);
+    (head, suffix.into_bytes())
 }
 
 /// One diagnostic, with `line` the text of its line.

@@ -8,9 +8,9 @@
 use crate::analysis::document::{DocumentAnalysis, LineSource};
 use crate::analysis::ProgramKind;
 use crate::config::MachineConfig;
-use crate::diagnostics::LineDiagnostic;
-use crate::lsp::convert::{diagnostics_json, publish_diagnostics_message, PositionEncoding};
+use crate::lsp::convert::{diagnostics_json, publish_diagnostics_frame, PositionEncoding};
 use crate::lsp::cross_file::{with_extra, ExtraDiagnostics};
+use crate::lsp::diagnostics_array::DiagnosticsArray;
 use crate::lsp::log;
 use crate::lsp::outgoing::{Outgoing, OutgoingSender};
 use crate::lsp::text_document::{
@@ -86,12 +86,12 @@ pub struct TextSnapshot {
 }
 
 /// Diagnostics as last written. In an ASCII document the text of a diagnostic depends only on the
-/// diagnostic (columns are byte offsets), so an edit that leaves every diagnostic as it was (most
-/// keystrokes in a large program) reuses the text and only the version changes.
+/// diagnostic (columns are byte offsets), so the next array reuses what this one wrote: an edit that
+/// leaves every diagnostic as it was (most keystrokes in a large program) reuses all of it, and one
+/// that changes a few rewrites only those.
 struct Published {
-    diagnostics: Vec<LineDiagnostic>,
     encoding: PositionEncoding,
-    array: Arc<Vec<u8>>,
+    array: DiagnosticsArray,
 }
 
 /// What a worker needs besides the document.
@@ -128,29 +128,32 @@ impl OpenDocument {
         }
     }
 
-    /// The JSON array of the analysis's diagnostics, reused from the last time when it still holds.
+    /// The JSON array of the analysis's diagnostics, built from the last one where it still holds.
     fn diagnostics_array(&self, analysed: &Analysed, encoding: PositionEncoding) -> Arc<Vec<u8>> {
         let diagnostics = analysed.analysis.diagnostics();
         let all_ascii = analysed.rope.len_bytes() == analysed.rope.len_chars();
         let mut published = lock(&self.published);
-        if let Some(last) = published.as_ref() {
-            if all_ascii && last.encoding == encoding && last.diagnostics == diagnostics {
-                return Arc::clone(&last.array);
-            }
+        if !all_ascii {
+            *published = None;
+            let lines = analysed.lines();
+            return Arc::new(diagnostics_json(
+                diagnostics,
+                |line_idx| lines.line(line_idx),
+                false,
+                encoding,
+            ));
         }
-        let lines = analysed.lines();
-        let array = Arc::new(diagnostics_json(
-            diagnostics,
-            |line_idx| lines.line(line_idx),
-            all_ascii,
-            encoding,
-        ));
-        *published = all_ascii.then(|| Published {
-            diagnostics: diagnostics.to_vec(),
-            encoding,
-            array: Arc::clone(&array),
-        });
-        array
+        let previous = published
+            .as_ref()
+            .filter(|last| last.encoding == encoding)
+            .map(|last| &last.array);
+        if let Some(previous) = previous.filter(|previous| previous.is_of(diagnostics)) {
+            return Arc::clone(previous.json());
+        }
+        let array = DiagnosticsArray::build(previous, diagnostics);
+        let json = Arc::clone(array.json());
+        *published = Some(Published { encoding, array });
+        json
     }
 
     /// The current revision; a request remembers it to know whether its answer is still current.
@@ -289,7 +292,14 @@ impl OpenDocument {
                 analysed.revision = revision;
             }
         } else {
-            let analysis = DocumentAnalysis::new(&RopeLines::new(&rope), config.clone(), self.kind);
+            // The whole document is read on two threads: the first analysis of a large program
+            // is what the user waits for after opening it.
+            let analysis = DocumentAnalysis::new_in_parallel(
+                &RopeLines::new(&rope),
+                &mut RopeLines::new(&rope),
+                config.clone(),
+                self.kind,
+            );
             *slot = Some(Analysed {
                 analysis,
                 rope,
@@ -315,8 +325,9 @@ impl OpenDocument {
                         analysed,
                         context.encoding,
                     );
-                    let message =
-                        publish_diagnostics_message(&self.uri, Some(analysed.version), &array);
+                    let (head, tail) =
+                        publish_diagnostics_frame(&self.uri, Some(analysed.version), array.len());
+                    let message = (head, array, tail);
                     let count = analysed.analysis.diagnostics().len();
                     (
                         (analysed.revision, extra_generation),
@@ -349,7 +360,8 @@ impl OpenDocument {
                         && lock(&self.extra).generation() == extra_generation
                     {
                         // Sent under the lock: a newer revision's publication cannot overtake it.
-                        context.outgoing.send_message(message);
+                        let (head, array, tail) = message;
+                        context.outgoing.send_parts(head, array, tail);
                         text.worker_running = false;
                         return;
                     }

@@ -4,6 +4,8 @@
 //! the server; with this guard a bad message costs only itself.
 
 use crate::lsp::log;
+use crate::lsp::open_texts::{take_text_out, OpenTexts, LARGE_MESSAGE_BYTES};
+use std::sync::Arc;
 use tokio::io::{AsyncBufReadExt, AsyncRead, AsyncReadExt, AsyncWriteExt, BufReader, DuplexStream};
 use tower_lsp_server::ls_types::MessageType;
 
@@ -14,7 +16,7 @@ const MAX_MESSAGE_LENGTH: usize = 1 << 30;
 const PIPE_SIZE: usize = 1 << 20;
 
 /// Returns a reader that yields the well-formed messages of `input`, framed again.
-pub fn guard_input<R>(input: R) -> DuplexStream
+pub fn guard_input<R>(input: R, open_texts: Arc<OpenTexts>) -> DuplexStream
 where
     R: AsyncRead + Unpin + Send + 'static,
 {
@@ -23,6 +25,23 @@ where
         let mut reader = BufReader::new(input);
         while let Some(body) = next_body(&mut reader).await {
             let Some(body) = body else { continue };
+            let body = if body.len() >= LARGE_MESSAGE_BYTES {
+                // Reading a message of megabytes takes milliseconds: not on the async threads.
+                let texts = Arc::clone(&open_texts);
+                let checked = tokio::task::spawn_blocking(move || {
+                    take_text_out(&body, &texts).or_else(|| well_formed(body))
+                })
+                .await;
+                match checked {
+                    Ok(Some(body)) => body,
+                    _ => continue,
+                }
+            } else {
+                match well_formed(body) {
+                    Some(body) => body,
+                    None => continue,
+                }
+            };
             let header = format!("Content-Length: {}\r\n\r\n", body.len());
             if to_server.write_all(header.as_bytes()).await.is_err()
                 || to_server.write_all(&body).await.is_err()
@@ -89,15 +108,23 @@ async fn next_body<R: AsyncRead + Unpin>(reader: &mut BufReader<R>) -> Option<Op
     }
     let mut body = vec![0; length];
     reader.read_exact(&mut body).await.ok()?;
-    // The framework reads the body as a `str`, so invalid UTF-8 would stop it as well.
+    Some(Some(body))
+}
+
+/// `body` when the framework can read it: a UTF-8 JSON text (the framework reads the body as a
+/// `str`, so invalid UTF-8 would stop it as well); `None`, with a log line, otherwise.
+fn well_formed(body: Vec<u8>) -> Option<Vec<u8>> {
     if std::str::from_utf8(&body).is_err()
         || serde_json::from_slice::<serde::de::IgnoredAny>(&body).is_err()
     {
         log::to_stderr(
             MessageType::WARNING,
-            &format!("a message of {length} bytes that is not JSON was dropped"),
+            &format!(
+                "a message of {} bytes that is not JSON was dropped",
+                body.len()
+            ),
         );
-        return Some(None);
+        return None;
     }
-    Some(Some(body))
+    Some(body)
 }

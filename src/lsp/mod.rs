@@ -6,17 +6,20 @@
 //! - `documents.rs`: open documents, their analysis on snapshots, the worker that publishes.
 //! - `text_document.rs`: rope text, `apply_changes`, the lines an edit touched, `LineSource`.
 //! - `convert.rs`: positions in the negotiated encoding, spans to ranges, diagnostics.
+//! - `diagnostics_array.rs`: the published diagnostics' JSON, reused by the next publication.
 //! - `hover.rs`, `inlay.rs`, `code_action.rs`, `endpoint_preview.rs`: one feature each.
 //! - `words.rs`: where the words of a block are, for the cursor; `gcode_help.rs`: G-function texts.
 //! - `settings.rs`: settings and each document's machine configuration; `ext.rs`: own protocol types.
 //! - `outgoing.rs`: all output; the server's own notifications serialized straight to text.
-//! - `log.rs`: logging and slow-handler reports.
+//! - `log.rs`: logging and slow-handler reports; `memory.rs`: the allocator's options.
 //! - `framing.rs`: drops malformed messages before they reach the framework's reader.
+//! - `open_texts.rs`: the texts of large `didOpen` messages, which the guard reads itself.
 
 mod code_action;
 mod completion;
 mod convert;
 mod cross_file;
+mod diagnostics_array;
 mod documents;
 mod endpoint_preview;
 mod ext;
@@ -25,8 +28,10 @@ mod gcode_help;
 mod hover;
 mod inlay;
 mod log;
+mod memory;
 mod navigation;
 mod numbers;
+mod open_texts;
 mod outgoing;
 mod outline;
 mod rewrite_commands;
@@ -53,12 +58,14 @@ where
     I: AsyncRead + Unpin + Send + 'static,
     O: AsyncWrite + Unpin + Send + 'static,
 {
-    let input = framing::guard_input(input);
+    let open_texts = std::sync::Arc::new(open_texts::OpenTexts::default());
+    let input = framing::guard_input(input, std::sync::Arc::clone(&open_texts));
     let (outgoing, framework_output, output_tasks) = outgoing::start(output);
-    let (service, socket) = LspService::build(move |client| server::Backend::new(client, outgoing))
-        .custom_method(ext::DOCUMENT_TEXT_REQUEST, server::Backend::document_text)
-        .custom_method(ext::MODAL_STATE_REQUEST, server::Backend::modal_state)
-        .finish();
+    let (service, socket) =
+        LspService::build(move |client| server::Backend::new(client, outgoing, open_texts))
+            .custom_method(ext::DOCUMENT_TEXT_REQUEST, server::Backend::document_text)
+            .custom_method(ext::MODAL_STATE_REQUEST, server::Backend::modal_state)
+            .finish();
     Server::new(input, framework_output, socket)
         .serve(service)
         .await;
@@ -67,6 +74,7 @@ where
 
 /// Runs the server on the process's stdin and stdout; returns the exit code.
 pub fn serve_stdio() -> u8 {
+    memory::configure_allocator();
     // Analyses run in the blocking pool. Few threads keep few allocator arenas holding freed memory
     // (a 1,000,000-line analysis allocates hundreds of MB); stdin and stdout need one thread each.
     let runtime = match tokio::runtime::Builder::new_multi_thread()

@@ -5,6 +5,7 @@
 
 use crate::lsp::log;
 use serde::Serialize;
+use std::sync::Arc;
 use std::time::Duration;
 use tokio::io::{
     AsyncBufReadExt, AsyncReadExt, AsyncWrite, AsyncWriteExt, BufReader, DuplexStream,
@@ -31,6 +32,13 @@ pub enum Outgoing {
 enum Frame {
     /// A whole message with its header.
     Message(Vec<u8>),
+    /// A message in three pieces, the middle one shared (a large diagnostics array, kept for the next
+    /// publication), so that it is written without being copied.
+    Parts {
+        head: Vec<u8>,
+        body: Arc<Vec<u8>>,
+        tail: Vec<u8>,
+    },
     /// Everything before this has been queued: flush and stop.
     End,
 }
@@ -100,9 +108,9 @@ impl OutgoingSender {
         }
     }
 
-    /// Queues a message that is already written, header included.
-    pub fn send_message(&self, message: Vec<u8>) {
-        let _ = self.0.send(Frame::Message(message));
+    /// Queues a message written in three pieces: `head` (with the header), `body` and `tail`.
+    pub fn send_parts(&self, head: Vec<u8>, body: Arc<Vec<u8>>, tail: Vec<u8>) {
+        let _ = self.0.send(Frame::Parts { head, body, tail });
     }
 
     /// Logs on stderr and as `window/logMessage`.
@@ -158,6 +166,16 @@ where
                 Frame::Message(bytes) => {
                     if output.write_all(&bytes).await.is_err() {
                         return;
+                    }
+                    if receiver.is_empty() && output.flush().await.is_err() {
+                        return;
+                    }
+                }
+                Frame::Parts { head, body, tail } => {
+                    for part in [&head[..], &body[..], &tail[..]] {
+                        if output.write_all(part).await.is_err() {
+                            return;
+                        }
                     }
                     if receiver.is_empty() && output.flush().await.is_err() {
                         return;

@@ -15,6 +15,7 @@ use crate::lsp::ext::{
 use crate::lsp::hover::hover;
 use crate::lsp::inlay::inlay_hints;
 use crate::lsp::log::HandlerTimer;
+use crate::lsp::open_texts::OpenTexts;
 use crate::lsp::outgoing::{Outgoing, OutgoingSender};
 use crate::lsp::rewrite_commands::{self, FORMAT_COMMAND, RENUMBER_COMMAND};
 use crate::lsp::settings::{machine_config_for, Settings};
@@ -64,6 +65,8 @@ pub struct Shared {
     settings: Mutex<Settings>,
     info: Mutex<ClientInfo>,
     outgoing: OutgoingSender,
+    /// Texts the input guard took out of large `didOpen` messages.
+    open_texts: Arc<OpenTexts>,
 }
 
 fn content_modified() -> Error {
@@ -116,7 +119,7 @@ impl std::ops::Deref for Backend {
 }
 
 impl Backend {
-    pub fn new(client: Client, outgoing: OutgoingSender) -> Backend {
+    pub fn new(client: Client, outgoing: OutgoingSender, open_texts: Arc<OpenTexts>) -> Backend {
         let shared = Shared {
             client,
             documents: Documents::default(),
@@ -124,6 +127,7 @@ impl Backend {
             settings: Mutex::new(Settings::default()),
             info: Mutex::new(ClientInfo::default()),
             outgoing,
+            open_texts,
         };
         Backend {
             shared: Arc::new(shared),
@@ -314,7 +318,7 @@ impl Shared {
             }
             (old, settings.clone())
         };
-        if old.config_file != new.config_file {
+        if old.config_file != new.config_file || old.machine_kind != new.machine_kind {
             let context = self.context();
             for document in self.documents.all() {
                 let config = self.machine_config(document.path.as_deref());
@@ -528,7 +532,12 @@ impl LanguageServer for Backend {
 
     async fn did_open(&self, params: DidOpenTextDocumentParams) {
         let _timer = HandlerTimer::new("textDocument/didOpen", &self.outgoing);
-        let item = params.text_document;
+        let mut item = params.text_document;
+        if item.text.is_empty() {
+            if let Some(text) = self.open_texts.take(&item.uri, item.version) {
+                item.text = text;
+            }
+        }
         let path = file_path(&item.uri);
         let kind = program_kind(&item.uri, path.as_deref());
         let config = self.machine_config(path.as_deref());

@@ -2,7 +2,9 @@
 //! `workspace/didChangeConfiguration`) and the machine configuration of each document
 //! (`sinumerik.toml` from the document's folder upward, or the file the settings name).
 
-use crate::config::{discover_config_file, load_config_file, ConfigError, MachineConfig};
+use crate::config::{
+    discover_config_file, load_config_file, ConfigError, MachineConfig, MachineKind,
+};
 use serde::Deserialize;
 use serde_json::Value;
 use std::path::{Path, PathBuf};
@@ -27,6 +29,8 @@ pub struct Settings {
     pub config_file: Option<PathBuf>,
     /// Folders of cycles and subprograms outside the workspace folders that the index reads too.
     pub cycle_folders: Vec<PathBuf>,
+    /// The machine of documents without a `sinumerik.toml`: a mill (the default) or a lathe.
+    pub machine_kind: MachineKind,
 }
 
 impl Settings {
@@ -63,6 +67,13 @@ impl Settings {
                         )),
                     }
                 }
+                "machineKind" => match value.as_str() {
+                    Some("mill") => self.machine_kind = MachineKind::Mill,
+                    Some("turn") => self.machine_kind = MachineKind::Turn,
+                    _ => problems.push(format!(
+                        "setting `machineKind`: expected \"mill\" or \"turn\", not {value}"
+                    )),
+                },
                 // Clients send their whole section; keys of other versions are not an error.
                 _ => {}
             }
@@ -92,10 +103,14 @@ pub fn machine_config_for(
         Some(config_file) => Some(config_file.clone()),
         None => path.and_then(Path::parent).and_then(discover_config_file),
     };
+    let without_file = || match settings.machine_kind {
+        MachineKind::Mill => MachineConfig::mill(),
+        MachineKind::Turn => MachineConfig::turn(),
+    };
     match config_path.map(|config_path| load_config_file(&config_path)) {
-        None => (Arc::new(MachineConfig::default()), None),
+        None => (Arc::new(without_file()), None),
         Some(Ok(config)) => (Arc::new(config), None),
-        Some(Err(error)) => (Arc::new(MachineConfig::default()), Some(error)),
+        Some(Err(error)) => (Arc::new(without_file()), Some(error)),
     }
 }
 
@@ -119,6 +134,29 @@ mod tests {
         assert_eq!(settings.config_file, Some(PathBuf::from("m.toml")));
         settings.apply(&json!({"configFile": null})).unwrap();
         assert_eq!(settings.config_file, None);
+        assert_eq!(settings.machine_kind, MachineKind::Mill);
+        settings.apply(&json!({"machineKind": "turn"})).unwrap();
+        assert_eq!(settings.machine_kind, MachineKind::Turn);
+        assert!(settings
+            .apply(&json!({"machineKind": "mill-turn"}))
+            .is_err());
+        assert_eq!(settings.machine_kind, MachineKind::Turn);
+    }
+
+    #[test]
+    fn the_machine_kind_decides_the_machine_of_documents_without_a_configuration_file() {
+        let mut settings = Settings::default();
+        let folder = std::env::temp_dir().join(format!(
+            "sinumerik-settings-{}/no-config-here",
+            std::process::id()
+        ));
+        let path = folder.join("a.mpf");
+        let (config, error) = machine_config_for(Some(&path), &settings, None);
+        assert!(error.is_none());
+        assert_eq!(config.kind, MachineKind::Mill);
+        settings.machine_kind = MachineKind::Turn;
+        let (config, _) = machine_config_for(Some(&path), &settings, None);
+        assert_eq!(*config, MachineConfig::turn());
     }
 
     #[test]

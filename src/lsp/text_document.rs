@@ -249,6 +249,69 @@ impl LineSource for RopeLines<'_> {
             }
         }
     }
+
+    fn for_each_line(&self, start: usize, visit: &mut dyn FnMut(usize, &str) -> bool) {
+        self.scan_lines(start, visit);
+    }
+}
+
+impl RopeLines<'_> {
+    /// Walks the lines from `start` on by scanning the rope's chunks for terminators, which is much
+    /// faster than ropey's line iterator (that one searches the line breaks of each line anew). A
+    /// line that spans chunks is gathered in a buffer; ropey never splits a CRLF between chunks, but
+    /// a CR at a chunk's end is still checked against the next chunk's first byte.
+    fn scan_lines(&self, start: usize, visit: &mut dyn FnMut(usize, &str) -> bool) {
+        if start >= self.line_count {
+            return;
+        }
+        let line_start = self.rope.line_to_byte(start);
+        let (chunks, chunk_start, _, _) = self.rope.chunks_at_byte(line_start);
+        let mut skip = line_start - chunk_start;
+        let mut index = start;
+        let mut carry = String::new();
+        // The previous chunk ended in CR: a LF at the start of this one belongs to it.
+        let mut after_cr = false;
+        for chunk in chunks {
+            let bytes = &chunk.as_bytes()[skip..];
+            let text = &chunk[skip..];
+            skip = 0;
+            let mut position = 0;
+            if after_cr && bytes.first() == Some(&b'\n') {
+                position = 1;
+            }
+            after_cr = false;
+            while let Some(offset) = memchr::memchr2(b'\n', b'\r', &bytes[position..]) {
+                let end = position + offset;
+                let line = if carry.is_empty() {
+                    &text[position..end]
+                } else {
+                    carry.push_str(&text[position..end]);
+                    carry.as_str()
+                };
+                if !visit(index, line) {
+                    return;
+                }
+                carry.clear();
+                index += 1;
+                if index >= self.line_count {
+                    return;
+                }
+                position = end + 1;
+                if bytes[end] == b'\r' {
+                    match bytes.get(position) {
+                        Some(b'\n') => position += 1,
+                        Some(_) => {}
+                        None => after_cr = true,
+                    }
+                }
+            }
+            carry.push_str(&text[position..]);
+        }
+        // The last line, without a terminator after it.
+        if !carry.is_empty() && index < self.line_count {
+            visit(index, &carry);
+        }
+    }
 }
 
 /// A line's text without its LF, CRLF or CR.
@@ -281,6 +344,50 @@ mod tests {
             .collect()
     }
 
+    fn scanned_lines(text: &str, start: usize) -> Vec<String> {
+        let document = DocumentText::new(text, 0);
+        let source = RopeLines::new(&document.rope);
+        let mut lines = Vec::new();
+        source.for_each_line(start, &mut |index, line| {
+            assert_eq!(index, start + lines.len());
+            lines.push(line.to_string());
+            true
+        });
+        lines
+    }
+
+    #[test]
+    fn scanning_chunks_gives_the_lines_of_the_core_also_across_chunk_borders() {
+        // Long lines and many short ones, so that lines and CRLFs fall on the borders of ropey's
+        // chunks (about 1 kB each), with every kind of terminator.
+        let mut text = String::new();
+        for index in 0..3000 {
+            text.push_str(&"X".repeat(index % 1500));
+            text.push_str(["\n", "\r\n", "\r", "\r\r\n"][index % 4]);
+            if index % 7 == 0 {
+                text.push_str("\u{e4}\u{1f600}");
+            }
+        }
+        text.push_str("last line without terminator");
+        let expected: Vec<String> = crate::syntax::lines::line_ranges(&text)
+            .map(|(start, end)| text[start..end].to_string())
+            .collect();
+        for start in [0, 1, 17, 1499, expected.len() - 1, expected.len()] {
+            assert_eq!(
+                scanned_lines(&text, start),
+                expected[start..],
+                "from {start}"
+            );
+        }
+        let mut seen = 0;
+        let document = DocumentText::new(&text, 0);
+        RopeLines::new(&document.rope).for_each_line(5, &mut |_, _| {
+            seen += 1;
+            seen < 3
+        });
+        assert_eq!(seen, 3, "the walk stops when the visitor says so");
+    }
+
     #[test]
     fn lines_split_like_the_core() {
         for text in [
@@ -296,6 +403,7 @@ mod tests {
                 .map(|(start, end)| text[start..end].to_string())
                 .collect();
             assert_eq!(lines(text), expected, "{text:?}");
+            assert_eq!(scanned_lines(text, 0), expected, "{text:?}");
         }
     }
 

@@ -117,10 +117,28 @@ pub fn macro_defined_by(line: &str) -> Option<&str> {
 }
 
 fn find_ascii_case_insensitive(haystack: &str, needle: &str) -> Option<usize> {
-    let comment_start = haystack.find(';').unwrap_or(haystack.len());
-    haystack.as_bytes()[..comment_start]
-        .windows(needle.len())
-        .position(|window| window.eq_ignore_ascii_case(needle.as_bytes()))
+    let comment_start = memchr::memchr(b';', haystack.as_bytes()).unwrap_or(haystack.len());
+    let code = &haystack.as_bytes()[..comment_start];
+    let needle = needle.as_bytes();
+    let first = *needle.first()?;
+    // Every line is searched when a document is opened, so the search jumps between the places
+    // where the needle's first letter occurs instead of comparing at every byte.
+    let mut from = 0;
+    while let Some(offset) = memchr::memchr2(
+        first.to_ascii_uppercase(),
+        first.to_ascii_lowercase(),
+        &code[from..],
+    ) {
+        let at = from + offset;
+        if code
+            .get(at..at + needle.len())
+            .is_some_and(|window| window.eq_ignore_ascii_case(needle))
+        {
+            return Some(at);
+        }
+        from = at + 1;
+    }
+    None
 }
 
 #[cfg(test)]
