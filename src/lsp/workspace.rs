@@ -1,7 +1,8 @@
 //! The server's workspace index: a [`WorkspaceIndex`] over the program files of the workspace folders
 //! (and the configured cycle folders), read from disk in the background with progress and
 //! cancellation, kept up to date from `didChangeWatchedFiles`, and overridden by the open documents,
-//! whose entries are rebuilt 300 ms after their last edit on the blocking pool (never per keystroke).
+//! whose entries are rebuilt on the blocking pool once their edits pause (300 ms, plus 1 ms per
+//! 1,000 lines: never per keystroke).
 //! After every update the cross-file findings of the open documents are computed again
 //! (`cross_file.rs` publishes them).
 //!
@@ -33,8 +34,19 @@ use tower_lsp_server::ls_types::{
     WorkDoneProgress, WorkDoneProgressBegin, WorkDoneProgressEnd, WorkDoneProgressReport,
 };
 
-/// How long after the last edit of a document its index entry is rebuilt.
+/// How long after the last edit of a small document its index entry is rebuilt.
 const DEBOUNCE: Duration = Duration::from_millis(300);
+
+/// The quiet time added per line of the document: rebuilding costs about a third of a microsecond
+/// per line, and a large program must not be rebuilt in every short pause of a burst of edits (on a
+/// loaded machine each rebuild would slow the next analyses and so make the pauses longer). A
+/// 1,000,000-line program waits 1.3 s.
+const DEBOUNCE_PER_LINE: Duration = Duration::from_micros(1);
+
+/// The quiet time after the last edit of a document of `line_count` lines.
+fn quiet_time(line_count: usize) -> Duration {
+    DEBOUNCE + DEBOUNCE_PER_LINE * u32::try_from(line_count).unwrap_or(u32::MAX)
+}
 
 /// The largest document whose entry a request made at every cursor move (highlights, hover) rebuilds
 /// itself when it is older than the text: about 20 ms of work. A larger document waits for its
@@ -91,7 +103,7 @@ impl IndexState {
 #[derive(Default)]
 pub struct Workspace {
     state: RwLock<IndexState>,
-    /// The documents waiting for their debounced update, with the time it is due.
+    /// The documents waiting for their debounced update, with the time of their last edit.
     debounce: Mutex<HashMap<Uri, Instant>>,
     /// The cancellation flag of the indexing run in progress.
     run: Mutex<Option<Arc<AtomicBool>>>,
@@ -292,11 +304,11 @@ impl ConfigCache<'_> {
     }
 }
 
-/// Called after every edit of an open document: its entry is rebuilt once the edits pause.
+/// Called after every edit of an open document: its entry is rebuilt once the edits pause (for a
+/// time that grows with the document, see [`quiet_time`]).
 pub fn document_changed(shared: &Arc<Shared>, uri: &Uri) {
-    let due = Instant::now() + DEBOUNCE;
     if lock(&shared.workspace.debounce)
-        .insert(uri.clone(), due)
+        .insert(uri.clone(), Instant::now())
         .is_some()
     {
         // A task already waits for this document and will see the new time.
@@ -305,16 +317,21 @@ pub fn document_changed(shared: &Arc<Shared>, uri: &Uri) {
     let shared = Arc::clone(shared);
     let uri = uri.clone();
     tokio::spawn(async move {
+        let line_count = shared
+            .documents
+            .get(&uri)
+            .map_or(0, |document| document.text_snapshot().rope.len_lines());
+        let quiet = quiet_time(line_count);
         loop {
             let wait_until = {
                 let mut pending = lock(&shared.workspace.debounce);
                 match pending.get(&uri) {
                     None => return,
-                    Some(due) if *due <= Instant::now() => {
+                    Some(last_edit) if *last_edit + quiet <= Instant::now() => {
                         pending.remove(&uri);
                         None
                     }
-                    Some(due) => Some(*due),
+                    Some(last_edit) => Some(*last_edit + quiet),
                 }
             };
             match wait_until {
@@ -587,6 +604,12 @@ mod tests {
             assert!(!is_program_file(Path::new(name)), "{name}");
         }
         assert!(is_config_file(Path::new("/x/SINUMERIK.TOML")));
+    }
+
+    #[test]
+    fn large_documents_wait_longer_for_their_update() {
+        assert_eq!(quiet_time(0), Duration::from_millis(300));
+        assert_eq!(quiet_time(1_000_000), Duration::from_millis(1300));
     }
 
     #[test]
