@@ -244,14 +244,10 @@ impl PositionReads<'_> {
 }
 
 impl DocumentAnalysis {
-    /// Analyses the whole document.
-    pub fn new(
-        source: &dyn LineSource,
-        config: Arc<MachineConfig>,
-        kind: ProgramKind,
-    ) -> DocumentAnalysis {
+    /// An analysis of nothing yet, to be filled by one of the from-scratch readings.
+    fn empty(config: Arc<MachineConfig>, kind: ProgramKind) -> DocumentAnalysis {
         let context = SyntaxContext::new(&config);
-        let mut analysis = DocumentAnalysis {
+        DocumentAnalysis {
             config,
             kind,
             context,
@@ -264,7 +260,16 @@ impl DocumentAnalysis {
             combined: None,
             lines_read: 0,
             unread: None,
-        };
+        }
+    }
+
+    /// Analyses the whole document.
+    pub fn new(
+        source: &dyn LineSource,
+        config: Arc<MachineConfig>,
+        kind: ProgramKind,
+    ) -> DocumentAnalysis {
+        let mut analysis = DocumentAnalysis::empty(config, kind);
         analysis.recompute(source);
         analysis
     }
@@ -277,21 +282,7 @@ impl DocumentAnalysis {
         config: Arc<MachineConfig>,
         kind: ProgramKind,
     ) -> DocumentAnalysis {
-        let context = SyntaxContext::new(&config);
-        let mut analysis = DocumentAnalysis {
-            config,
-            kind,
-            context,
-            subprogram: false,
-            line_flags: Vec::new(),
-            position_reads: Vec::new(),
-            checkpoints: Vec::new(),
-            body: Vec::new(),
-            tail: Vec::new(),
-            combined: None,
-            lines_read: 0,
-            unread: None,
-        };
+        let mut analysis = DocumentAnalysis::empty(config, kind);
         analysis.recompute_in_parallel(source, helper_source);
         analysis
     }
