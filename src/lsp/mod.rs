@@ -39,6 +39,7 @@ mod semantic;
 mod server;
 mod settings;
 mod signature;
+mod stdio;
 mod text_document;
 mod words;
 mod workspace;
@@ -54,6 +55,14 @@ use tower_lsp_server::{LspService, Server};
 
 /// Serves the protocol on `input` and `output` until the client sends `exit` or closes the input.
 pub async fn serve<I, O>(input: I, output: O)
+where
+    I: AsyncRead + Unpin + Send + 'static,
+    O: AsyncWrite + Unpin + Send + 'static,
+{
+    serve_on(input, outgoing::Sink::Stream(output)).await;
+}
+
+async fn serve_on<I, O>(input: I, output: outgoing::Sink<O>)
 where
     I: AsyncRead + Unpin + Send + 'static,
     O: AsyncWrite + Unpin + Send + 'static,
@@ -88,7 +97,11 @@ pub fn serve_stdio() -> u8 {
             return 2;
         }
     };
-    runtime.block_on(serve(tokio::io::stdin(), tokio::io::stdout()));
+    stdio::enlarge_pipe_buffers();
+    runtime.block_on(serve_on(
+        tokio::io::stdin(),
+        outgoing::Sink::<tokio::io::Stdout>::Thread(stdio::raw_stdout()),
+    ));
     // Analyses still running in the blocking pool are not waited for: the client has gone.
     runtime.shutdown_timeout(std::time::Duration::from_millis(100));
     // The protocol's exit code: 0 after `shutdown`, 1 when the client left without it.

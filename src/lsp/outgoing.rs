@@ -4,13 +4,15 @@
 //! value tree of every notification, which for 24,000 diagnostics took more than ten times as long.
 
 use crate::lsp::log;
+use crate::lsp::stdio::write_all_parts;
 use serde::Serialize;
+use std::io::Write;
 use std::sync::Arc;
 use std::time::Duration;
 use tokio::io::{
     AsyncBufReadExt, AsyncReadExt, AsyncWrite, AsyncWriteExt, BufReader, DuplexStream,
 };
-use tokio::sync::mpsc;
+use tokio::sync::{mpsc, oneshot};
 use tokio::task::JoinHandle;
 use tower_lsp_server::ls_types::{
     Diagnostic, LogMessageParams, MessageType, PublishDiagnosticsParams, Uri,
@@ -133,28 +135,51 @@ impl OutgoingSender {
     }
 }
 
+/// Where the messages are written.
+pub enum Sink<O> {
+    /// A stream written by a task of the runtime (the in-process tests).
+    Stream(O),
+    /// A blocking writer with a thread of its own (the process's stdout, see `stdio.rs`): a full pipe
+    /// then holds up that thread only, and large messages go out without a copy.
+    Thread(Box<dyn Write + Send>),
+}
+
+enum Writer {
+    Task(JoinHandle<()>),
+    /// Fires when the thread has written everything queued before the end.
+    Thread(oneshot::Receiver<()>),
+}
+
 /// The tasks that write the output; [`OutputTasks::finish`] waits until everything queued is out.
 pub struct OutputTasks {
     sender: OutgoingSender,
     forwarder: JoinHandle<()>,
-    writer: JoinHandle<()>,
+    writer: Writer,
 }
 
 impl OutputTasks {
     pub async fn finish(self) {
         let _ = self.forwarder.await;
         let _ = self.sender.0.send(Frame::End);
-        let _ = tokio::time::timeout(Duration::from_secs(5), self.writer).await;
+        let wait = Duration::from_secs(5);
+        match self.writer {
+            Writer::Task(task) => {
+                let _ = tokio::time::timeout(wait, task).await;
+            }
+            Writer::Thread(done) => {
+                let _ = tokio::time::timeout(wait, done).await;
+            }
+        }
     }
 }
 
-/// Starts writing to `output`. Returns the sender for the server's own notifications, the stream the
+/// Starts writing to `sink`. Returns the sender for the server's own notifications, the stream the
 /// framework writes its messages to, and the tasks.
-pub fn start<O>(output: O) -> (OutgoingSender, DuplexStream, OutputTasks)
+pub fn start<O>(sink: Sink<O>) -> (OutgoingSender, DuplexStream, OutputTasks)
 where
     O: AsyncWrite + Unpin + Send + 'static,
 {
-    let (sender, mut receiver) = mpsc::unbounded_channel();
+    let (sender, receiver) = mpsc::unbounded_channel();
     let sender = OutgoingSender(sender);
     let (framework_side, forwarder_side) = tokio::io::duplex(1 << 20);
     let framework_sender = sender.clone();
@@ -164,33 +189,25 @@ where
             let _ = framework_sender.0.send(Frame::Message(frame));
         }
     });
-    let writer = tokio::spawn(async move {
-        let mut output = output;
-        while let Some(frame) = receiver.recv().await {
-            match frame {
-                Frame::Message(bytes) => {
-                    if output.write_all(&bytes).await.is_err() {
-                        return;
-                    }
-                    if receiver.is_empty() && output.flush().await.is_err() {
-                        return;
-                    }
-                }
-                Frame::Parts { head, body, tail } => {
-                    for part in [&head[..], &body[..], &tail[..]] {
-                        if output.write_all(part).await.is_err() {
-                            return;
-                        }
-                    }
-                    if receiver.is_empty() && output.flush().await.is_err() {
-                        return;
-                    }
-                }
-                Frame::End => break,
+    let writer = match sink {
+        Sink::Stream(output) => Writer::Task(tokio::spawn(write_to_stream(output, receiver))),
+        Sink::Thread(output) => {
+            let (done, finished) = oneshot::channel();
+            let spawned = std::thread::Builder::new()
+                .name("lsp-output".to_string())
+                .spawn(move || {
+                    write_blocking(output, receiver);
+                    let _ = done.send(());
+                });
+            if let Err(error) = spawned {
+                log::to_stderr(
+                    MessageType::ERROR,
+                    &format!("the output thread cannot start: {error}"),
+                );
             }
+            Writer::Thread(finished)
         }
-        let _ = output.flush().await;
-    });
+    };
     (
         sender.clone(),
         framework_side,
@@ -200,6 +217,48 @@ where
             writer,
         },
     )
+}
+
+async fn write_to_stream<O: AsyncWrite + Unpin>(
+    mut output: O,
+    mut receiver: mpsc::UnboundedReceiver<Frame>,
+) {
+    while let Some(frame) = receiver.recv().await {
+        let written = match &frame {
+            Frame::End => break,
+            Frame::Message(bytes) => output.write_all(bytes).await,
+            Frame::Parts { head, body, tail } => {
+                let mut result = Ok(());
+                for part in [&head[..], &body[..], &tail[..]] {
+                    result = output.write_all(part).await;
+                    if result.is_err() {
+                        break;
+                    }
+                }
+                result
+            }
+        };
+        if written.is_err() || (receiver.is_empty() && output.flush().await.is_err()) {
+            return;
+        }
+    }
+    let _ = output.flush().await;
+}
+
+/// The output thread: writes each message as it comes, until the end or until the output fails (the
+/// client has gone; what is still queued is dropped with the channel).
+fn write_blocking(mut output: Box<dyn Write + Send>, mut receiver: mpsc::UnboundedReceiver<Frame>) {
+    while let Some(frame) = receiver.blocking_recv() {
+        let written = match &frame {
+            Frame::End => break,
+            Frame::Message(bytes) => write_all_parts(&mut *output, &[bytes]),
+            Frame::Parts { head, body, tail } => write_all_parts(&mut *output, &[head, body, tail]),
+        };
+        if written.is_err() || output.flush().is_err() {
+            return;
+        }
+    }
+    let _ = output.flush();
 }
 
 /// One message as the framework wrote it, header included; `None` when the framework has stopped.
