@@ -7,9 +7,10 @@
 
 use crate::diagnostics::LineDiagnostic;
 use crate::lsp::convert::{diagnostics_json, PositionEncoding};
+use crate::lsp::diagnostics_array::JsonArray;
 use crate::lsp::documents::{lock, Analysed};
 use crate::lsp::text_document::RopeLineChange;
-use std::sync::{Arc, Mutex};
+use std::sync::Mutex;
 
 /// The latest cross-file findings of one document.
 #[derive(Debug, Default)]
@@ -71,11 +72,11 @@ impl ExtraDiagnostics {
 /// The analysis's JSON array of diagnostics with the cross-file findings added, and the generation
 /// of those findings. Without findings the array is returned as it is (no copy).
 pub fn with_extra(
-    array: Arc<Vec<u8>>,
+    array: JsonArray,
     extra: &Mutex<ExtraDiagnostics>,
     analysed: &Analysed,
     encoding: PositionEncoding,
-) -> (Arc<Vec<u8>>, u64) {
+) -> (JsonArray, u64) {
     let extra = lock(extra);
     if extra.items.is_empty() {
         return (array, extra.generation);
@@ -95,22 +96,7 @@ pub fn with_extra(
         all_ascii,
         encoding,
     );
-    (Arc::new(join_arrays(&array, &added)), extra.generation)
-}
-
-/// `[a...]` and `[b...]` as one array `[a..., b...]`.
-fn join_arrays(first: &[u8], second: &[u8]) -> Vec<u8> {
-    let first_inner = &first[1..first.len().saturating_sub(1).max(1)];
-    let second_inner = &second[1..second.len().saturating_sub(1).max(1)];
-    let mut out = Vec::with_capacity(first.len() + second.len());
-    out.push(b'[');
-    out.extend_from_slice(first_inner);
-    if !first_inner.is_empty() && !second_inner.is_empty() {
-        out.push(b',');
-    }
-    out.extend_from_slice(second_inner);
-    out.push(b']');
-    out
+    (array.join_array(&added), extra.generation)
 }
 
 #[cfg(test)]
@@ -123,13 +109,6 @@ mod tests {
             line,
             diagnostic: Diagnostic::new(Code::UnexpectedCharacter, Span::new(0, 1), "x"),
         }
-    }
-
-    #[test]
-    fn arrays_join_also_when_one_is_empty() {
-        assert_eq!(join_arrays(b"[1,2]", b"[3]"), b"[1,2,3]");
-        assert_eq!(join_arrays(b"[]", b"[3]"), b"[3]");
-        assert_eq!(join_arrays(b"[1]", b"[]"), b"[1]");
     }
 
     #[test]

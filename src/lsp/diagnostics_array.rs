@@ -1,8 +1,10 @@
 //! The JSON array of a document's diagnostics as last published, and the next array built from it.
 //! A large program has tens of thousands of findings and every version must carry all of them, but an
-//! edit changes only a few: in an ASCII document a diagnostic's JSON depends on the diagnostic alone,
-//! so the objects before and after the changed ones are copied as bytes, and those after an inserted
-//! or removed line get only their line numbers rewritten.
+//! edit changes only a few. The array is kept in chunks of [`CHUNK`] diagnostics, each written once and
+//! shared: the next array takes over every chunk whose diagnostics did not change, writes anew only
+//! the chunks around the change, and rewrites only the line numbers of chunks that moved by inserted
+//! or removed lines (in an ASCII document a diagnostic's JSON depends on the diagnostic alone). The
+//! message then goes out as the list of pieces, without being copied into one buffer.
 
 use crate::diagnostics::LineDiagnostic;
 use crate::lsp::convert::{
@@ -11,87 +13,86 @@ use crate::lsp::convert::{
 use std::io::Write;
 use std::sync::Arc;
 
-/// A written array of the diagnostics of an ASCII document.
-pub struct DiagnosticsArray {
+/// Diagnostics per chunk: an edit writes one or two chunks (about 60 KB each) anew.
+const CHUNK: usize = 256;
+
+/// Arrays of at least this many diagnostics are written on two threads when nothing can be taken
+/// over (the first publication after opening a large program).
+const PARALLEL_MIN_DIAGNOSTICS: usize = 8 * CHUNK;
+
+/// A JSON array in shared pieces: runs of its elements' JSON, written with brackets and commas.
+#[derive(Clone, Default)]
+pub struct JsonArray {
+    /// Each a non-empty run of elements separated by commas.
+    runs: Vec<Arc<Vec<u8>>>,
+}
+
+impl JsonArray {
+    /// The array `json` (`[...]`, as serde_json writes it).
+    pub fn from_json(json: &[u8]) -> JsonArray {
+        JsonArray::default().join_array(json)
+    }
+
+    /// The length of the JSON text.
+    pub fn len(&self) -> usize {
+        let runs: usize = self.runs.iter().map(|run| run.len()).sum();
+        2 + runs + self.runs.len().saturating_sub(1)
+    }
+
+    /// The JSON text, piece by piece.
+    pub fn pieces(&self) -> impl Iterator<Item = &[u8]> {
+        let separated = self.runs.iter().enumerate().flat_map(|(index, run)| {
+            let separator: &[u8] = if index == 0 { b"" } else { b"," };
+            [separator, run.as_slice()]
+        });
+        std::iter::once(&b"["[..])
+            .chain(separated)
+            .chain(std::iter::once(&b"]"[..]))
+            .filter(|piece| !piece.is_empty())
+    }
+
+    /// The whole text in one buffer.
+    #[cfg(test)]
+    pub fn to_vec(&self) -> Vec<u8> {
+        self.pieces().flatten().copied().collect()
+    }
+
+    /// This array with the elements of the array `json` (`[...]`) added at its end.
+    pub fn join_array(&self, json: &[u8]) -> JsonArray {
+        let inner = json
+            .strip_prefix(b"[")
+            .and_then(|rest| rest.strip_suffix(b"]"))
+            .unwrap_or_default();
+        let mut joined = self.clone();
+        if !inner.is_empty() {
+            joined.runs.push(Arc::new(inner.to_vec()));
+        }
+        joined
+    }
+}
+
+/// Diagnostics with their JSON objects, separated by commas, without brackets.
+struct Chunk {
     diagnostics: Vec<LineDiagnostic>,
     json: Arc<Vec<u8>>,
     /// Where each diagnostic's object starts in `json`.
     starts: Vec<usize>,
 }
 
-impl DiagnosticsArray {
-    /// The JSON text: `[`, the objects separated by commas, `]`.
-    pub fn json(&self) -> &Arc<Vec<u8>> {
-        &self.json
-    }
-
-    /// The array of `diagnostics` (of an ASCII document), reusing what `previous` wrote.
-    pub fn build(previous: Option<&DiagnosticsArray>, diagnostics: &[LineDiagnostic]) -> Self {
-        let mut writer = Writer {
-            json: Vec::with_capacity(previous.map_or(2 + diagnostics.len() * 200, |previous| {
-                previous.json.len() + previous.json.len() / 8 + 1024
-            })),
-            starts: Vec::with_capacity(diagnostics.len()),
-        };
-        writer.json.push(b'[');
-        let (prefix, suffix, delta) = match previous {
-            Some(previous) => common_ends(&previous.diagnostics, diagnostics),
-            None => (0, 0, 0),
-        };
-        if let Some(previous) = previous {
-            writer.copy(previous, 0..prefix);
-        }
-        for item in &diagnostics[prefix..diagnostics.len() - suffix] {
-            writer.begin_object();
-            write_diagnostic_json(&mut writer.json, ascii_range(item), item);
-        }
-        if let Some(previous) = previous {
-            let old_suffix = previous.diagnostics.len() - suffix..previous.diagnostics.len();
-            if delta == 0 {
-                writer.copy(previous, old_suffix);
-            } else {
-                let new_lines = diagnostics[diagnostics.len() - suffix..]
-                    .iter()
-                    .map(|item| item.line);
-                for (old, line) in old_suffix.zip(new_lines) {
-                    writer.begin_object();
-                    let object = previous.object(old);
-                    if !write_with_line(&mut writer.json, object, line) {
-                        let item =
-                            &diagnostics[old + diagnostics.len() - previous.diagnostics.len()];
-                        write_diagnostic_json(&mut writer.json, ascii_range(item), item);
-                    }
-                }
-            }
-        }
-        writer.json.push(b']');
-        DiagnosticsArray {
-            diagnostics: diagnostics.to_vec(),
-            json: Arc::new(writer.json),
-            starts: writer.starts,
-        }
-    }
-
-    /// Whether the array is that of exactly `diagnostics`.
-    pub fn is_of(&self, diagnostics: &[LineDiagnostic]) -> bool {
-        self.diagnostics == diagnostics
-    }
-
-    fn object(&self, index: usize) -> &[u8] {
-        let end = match self.starts.get(index + 1) {
-            Some(next) => next - 1,
-            None => self.json.len() - 1,
-        };
-        &self.json[self.starts[index]..end]
-    }
-}
-
-struct Writer {
+/// A chunk being written.
+struct ChunkWriter {
     json: Vec<u8>,
     starts: Vec<usize>,
 }
 
-impl Writer {
+impl ChunkWriter {
+    fn with_capacity(count: usize) -> ChunkWriter {
+        ChunkWriter {
+            json: Vec::with_capacity(count * 200),
+            starts: Vec::with_capacity(count),
+        }
+    }
+
     fn begin_object(&mut self) {
         if !self.starts.is_empty() {
             self.json.push(b',');
@@ -99,41 +100,169 @@ impl Writer {
         self.starts.push(self.json.len());
     }
 
-    /// Copies the objects `range` of `previous` in one piece.
-    fn copy(&mut self, previous: &DiagnosticsArray, range: std::ops::Range<usize>) {
-        if range.is_empty() {
-            return;
-        }
-        if !self.starts.is_empty() {
-            self.json.push(b',');
-        }
-        let from = previous.starts[range.start];
-        let to = previous.starts[range.end - 1] + previous.object(range.end - 1).len();
-        let base = self.json.len();
-        self.json.extend_from_slice(&previous.json[from..to]);
-        self.starts.extend(
-            previous.starts[range]
-                .iter()
-                .map(|start| start - from + base),
-        );
+    fn finish(self, diagnostics: &[LineDiagnostic]) -> Arc<Chunk> {
+        Arc::new(Chunk {
+            diagnostics: diagnostics.to_vec(),
+            json: Arc::new(self.json),
+            starts: self.starts,
+        })
     }
 }
 
-/// How many diagnostics `old` and `new` share at the start, how many at the end (where the new ones
-/// may all be `delta` lines further), and that `delta`.
-fn common_ends(old: &[LineDiagnostic], new: &[LineDiagnostic]) -> (usize, usize, isize) {
-    let prefix = old
-        .iter()
+impl Chunk {
+    fn written(diagnostics: &[LineDiagnostic]) -> Arc<Chunk> {
+        let mut writer = ChunkWriter::with_capacity(diagnostics.len());
+        for item in diagnostics {
+            writer.begin_object();
+            write_diagnostic_json(&mut writer.json, ascii_range(item), item);
+        }
+        writer.finish(diagnostics)
+    }
+
+    /// `old` with its diagnostics moved to other lines: `new`, the same diagnostics at their lines.
+    fn moved(old: &Chunk, new: &[LineDiagnostic]) -> Arc<Chunk> {
+        let mut writer = ChunkWriter::with_capacity(new.len());
+        for (index, item) in new.iter().enumerate() {
+            writer.begin_object();
+            if !write_with_line(&mut writer.json, old.object(index), item.line) {
+                write_diagnostic_json(&mut writer.json, ascii_range(item), item);
+            }
+        }
+        writer.finish(new)
+    }
+
+    fn object(&self, index: usize) -> &[u8] {
+        let end = match self.starts.get(index + 1) {
+            Some(next) => next - 1,
+            None => self.json.len(),
+        };
+        &self.json[self.starts[index]..end]
+    }
+}
+
+/// A written array of the diagnostics of an ASCII document.
+pub struct DiagnosticsArray {
+    chunks: Vec<Arc<Chunk>>,
+    json: JsonArray,
+}
+
+impl DiagnosticsArray {
+    /// The JSON text: `[`, the objects separated by commas, `]`.
+    pub fn json(&self) -> &JsonArray {
+        &self.json
+    }
+
+    /// The array of `diagnostics` (of an ASCII document), reusing what `previous` wrote.
+    pub fn build(previous: Option<&DiagnosticsArray>, diagnostics: &[LineDiagnostic]) -> Self {
+        let Some(previous) = previous.filter(|previous| !previous.chunks.is_empty()) else {
+            return DiagnosticsArray::from_chunks(written_chunks(diagnostics));
+        };
+        let old_count: usize = previous
+            .chunks
+            .iter()
+            .map(|chunk| chunk.diagnostics.len())
+            .sum();
+        let (prefix, suffix, delta) = common_ends(previous, old_count, diagnostics);
+        let mut chunks = Vec::with_capacity(diagnostics.len() / CHUNK + 2);
+        // The old chunks wholly within the common start are taken over.
+        let mut taken = 0;
+        for chunk in &previous.chunks {
+            if taken + chunk.diagnostics.len() > prefix {
+                break;
+            }
+            taken += chunk.diagnostics.len();
+            chunks.push(Arc::clone(chunk));
+        }
+        // The old chunks wholly within the common end, from the back.
+        let mut kept_at_end = Vec::new();
+        let mut kept = 0;
+        for chunk in previous.chunks.iter().rev() {
+            if kept + chunk.diagnostics.len() > suffix
+                || old_count - kept - chunk.diagnostics.len() < taken
+            {
+                break;
+            }
+            kept += chunk.diagnostics.len();
+            kept_at_end.push(chunk);
+        }
+        let middle = &diagnostics[taken..diagnostics.len() - kept];
+        chunks.extend(written_chunks(middle));
+        let mut new_start = diagnostics.len() - kept;
+        for old in kept_at_end.into_iter().rev() {
+            let new = &diagnostics[new_start..new_start + old.diagnostics.len()];
+            new_start += old.diagnostics.len();
+            chunks.push(if delta == 0 {
+                Arc::clone(old)
+            } else {
+                Chunk::moved(old, new)
+            });
+        }
+        DiagnosticsArray::from_chunks(chunks)
+    }
+
+    fn from_chunks(chunks: Vec<Arc<Chunk>>) -> DiagnosticsArray {
+        let json = JsonArray {
+            runs: chunks
+                .iter()
+                .filter(|chunk| !chunk.json.is_empty())
+                .map(|chunk| Arc::clone(&chunk.json))
+                .collect(),
+        };
+        DiagnosticsArray { chunks, json }
+    }
+
+    /// Whether the array is that of exactly `diagnostics`.
+    pub fn is_of(&self, diagnostics: &[LineDiagnostic]) -> bool {
+        let mut rest = diagnostics;
+        for chunk in &self.chunks {
+            let Some(own) = rest.get(..chunk.diagnostics.len()) else {
+                return false;
+            };
+            if own != chunk.diagnostics.as_slice() {
+                return false;
+            }
+            rest = &rest[own.len()..];
+        }
+        rest.is_empty()
+    }
+}
+
+/// `diagnostics` written in chunks; a large array on two threads.
+fn written_chunks(diagnostics: &[LineDiagnostic]) -> Vec<Arc<Chunk>> {
+    let write = |diagnostics: &[LineDiagnostic]| -> Vec<Arc<Chunk>> {
+        diagnostics.chunks(CHUNK).map(Chunk::written).collect()
+    };
+    if diagnostics.len() < PARALLEL_MIN_DIAGNOSTICS {
+        return write(diagnostics);
+    }
+    let (first, second) = diagnostics.split_at(diagnostics.len() / CHUNK / 2 * CHUNK);
+    std::thread::scope(|scope| {
+        let helper = scope.spawn(|| write(second));
+        let mut chunks = write(first);
+        // A thread that failed (it cannot, short of running out of memory) has its part written here.
+        chunks.extend(helper.join().unwrap_or_else(|_| write(second)));
+        chunks
+    })
+}
+
+/// How many diagnostics the `old_count` of `old` and `new` share at the start, how many at the end
+/// (where the new ones may all be `delta` lines further), and that `delta`.
+fn common_ends(
+    old: &DiagnosticsArray,
+    old_count: usize,
+    new: &[LineDiagnostic],
+) -> (usize, usize, isize) {
+    let old_items = || old.chunks.iter().flat_map(|chunk| chunk.diagnostics.iter());
+    let prefix = old_items()
         .zip(new)
         .take_while(|(old, new)| old == new)
         .count();
-    let (Some(old_last), Some(new_last)) = (old.last(), new.last()) else {
+    let (Some(old_last), Some(new_last)) = (old_items().next_back(), new.last()) else {
         return (prefix, 0, 0);
     };
     let delta = new_last.line as isize - old_last.line as isize;
-    let most = old.len().min(new.len()) - prefix;
-    let suffix = old
-        .iter()
+    let most = old_count.min(new.len()) - prefix;
+    let suffix = old_items()
         .rev()
         .zip(new.iter().rev())
         .take(most)
@@ -209,45 +338,101 @@ mod tests {
         )
     }
 
+    fn findings_every_third_line(random: &mut Random, count: usize) -> Vec<LineDiagnostic> {
+        (0..count)
+            .map(|index| diagnostic(random, index * 3))
+            .collect()
+    }
+
     #[test]
     fn arrays_built_from_the_last_one_equal_arrays_written_anew() {
-        let mut random = Random(0x1234_5678);
-        let mut lines_with_findings: Vec<usize> = (0..300).map(|line| line * 3).collect();
-        let mut diagnostics: Vec<LineDiagnostic> = lines_with_findings
-            .iter()
-            .map(|&line| diagnostic(&mut random, line))
-            .collect();
-        let mut array = DiagnosticsArray::build(None, &diagnostics);
-        assert_eq!(**array.json(), full(&diagnostics));
-        for step in 0..400 {
-            // An edit at one line: its findings change, and the later lines may move.
-            let at = random.below(diagnostics.len() + 1);
-            let removed = random.below(3).min(diagnostics.len() - at);
-            let delta = random.below(5) as isize - 2;
-            let base_line = diagnostics.get(at).map_or(1000, |item| item.line);
-            let inserted: Vec<LineDiagnostic> = (0..random.below(3))
-                .map(|_| diagnostic(&mut random, base_line))
-                .collect();
-            let mut next: Vec<LineDiagnostic> = diagnostics[..at].to_vec();
-            next.extend(inserted);
-            next.extend(diagnostics[at + removed..].iter().map(|item| {
-                let mut moved = item.clone();
-                moved.line = moved.line.saturating_add_signed(delta).max(base_line);
-                moved
-            }));
-            if step % 50 == 0 {
-                next.clear();
+        // Within one chunk, over a few, and over enough to be written on two threads.
+        for count in [100, 300, 3 * PARALLEL_MIN_DIAGNOSTICS / 2] {
+            let mut random = Random(0x1234_5678 ^ count as u64);
+            let mut diagnostics = findings_every_third_line(&mut random, count);
+            let mut array = DiagnosticsArray::build(None, &diagnostics);
+            assert_eq!(array.json().to_vec(), full(&diagnostics));
+            for step in 0..300 {
+                // An edit at one line: its findings change, and the later lines may move.
+                let at = random.below(diagnostics.len() + 1);
+                let removed = random.below(3).min(diagnostics.len() - at);
+                let delta = random.below(5) as isize - 2;
+                let base_line = diagnostics.get(at).map_or(1000, |item| item.line);
+                let inserted: Vec<LineDiagnostic> = (0..random.below(3))
+                    .map(|_| diagnostic(&mut random, base_line))
+                    .collect();
+                let mut next: Vec<LineDiagnostic> = diagnostics[..at].to_vec();
+                next.extend(inserted);
+                next.extend(diagnostics[at + removed..].iter().map(|item| {
+                    let mut moved = item.clone();
+                    moved.line = moved.line.saturating_add_signed(delta).max(base_line);
+                    moved
+                }));
+                match step % 100 {
+                    // Every finding goes, and then all come back.
+                    50 => next.clear(),
+                    51 => next = findings_every_third_line(&mut random, count),
+                    // Nothing changes.
+                    70 => next = diagnostics.clone(),
+                    _ => {}
+                }
+                let built = DiagnosticsArray::build(Some(&array), &next);
+                assert_eq!(
+                    String::from_utf8_lossy(&built.json().to_vec()),
+                    String::from_utf8_lossy(&full(&next)),
+                    "{count} findings, step {step}"
+                );
+                assert!(built.is_of(&next));
+                assert!(next.is_empty() || !built.is_of(&next[1..]));
+                array = built;
+                diagnostics = next;
             }
-            let built = DiagnosticsArray::build(Some(&array), &next);
-            assert_eq!(
-                String::from_utf8_lossy(built.json()),
-                String::from_utf8_lossy(&full(&next)),
-                "step {step}"
-            );
-            assert!(built.is_of(&next));
-            array = built;
-            diagnostics = next;
-            lines_with_findings.clear();
+        }
+    }
+
+    #[test]
+    fn an_edit_writes_only_the_chunks_around_it() {
+        let mut random = Random(7);
+        let diagnostics = findings_every_third_line(&mut random, 10 * CHUNK);
+        let array = DiagnosticsArray::build(None, &diagnostics);
+        let mut next = diagnostics.clone();
+        next[5 * CHUNK + 3] = diagnostic(&mut random, next[5 * CHUNK + 3].line);
+        let built = DiagnosticsArray::build(Some(&array), &next);
+        let shared = built
+            .chunks
+            .iter()
+            .filter(|chunk| array.chunks.iter().any(|old| Arc::ptr_eq(old, chunk)))
+            .count();
+        assert_eq!(shared, 9, "every chunk but the changed one is taken over");
+        assert_eq!(built.json().to_vec(), full(&next));
+    }
+
+    #[test]
+    fn arrays_join_also_when_one_is_empty() {
+        let join = |first: &[u8], second: &[u8]| JsonArray::from_json(first).join_array(second);
+        assert_eq!(join(b"[1,2]", b"[3]").to_vec(), b"[1,2,3]");
+        assert_eq!(join(b"[]", b"[3]").to_vec(), b"[3]");
+        assert_eq!(join(b"[1]", b"[]").to_vec(), b"[1]");
+        assert_eq!(join(b"[]", b"[]").to_vec(), b"[]");
+        assert_eq!(join(b"[1]", b"[]").len(), 3);
+        assert_eq!(join(b"[1,2]", b"[3]").len(), 7);
+    }
+
+    #[test]
+    fn extra_objects_join_the_array() {
+        let mut random = Random(3);
+        for count in [0, 1, 2 * CHUNK + 5] {
+            let diagnostics = findings_every_third_line(&mut random, count);
+            let array = DiagnosticsArray::build(None, &diagnostics);
+            for extra in [&b"[]"[..], b"[{\"a\":1}]", b"[{\"a\":1},{\"b\":2}]"] {
+                let joined = array.json().join_array(extra);
+                let value: serde_json::Value = serde_json::from_slice(&joined.to_vec())
+                    .unwrap_or_else(|error| panic!("{count} + {extra:?}: {error}"));
+                let extra_count = serde_json::from_slice::<Vec<serde_json::Value>>(extra)
+                    .unwrap()
+                    .len();
+                assert_eq!(value.as_array().unwrap().len(), count + extra_count);
+            }
         }
     }
 
@@ -269,7 +454,7 @@ mod tests {
                 })
                 .collect();
             let built = DiagnosticsArray::build(Some(&array), &new);
-            assert_eq!(**built.json(), full(&new), "delta {delta}");
+            assert_eq!(built.json().to_vec(), full(&new), "delta {delta}");
         }
     }
 }

@@ -10,7 +10,7 @@ use crate::analysis::ProgramKind;
 use crate::config::MachineConfig;
 use crate::lsp::convert::{diagnostics_json, publish_diagnostics_frame, PositionEncoding};
 use crate::lsp::cross_file::{with_extra, ExtraDiagnostics};
-use crate::lsp::diagnostics_array::DiagnosticsArray;
+use crate::lsp::diagnostics_array::{DiagnosticsArray, JsonArray};
 use crate::lsp::log;
 use crate::lsp::outgoing::{Outgoing, OutgoingSender};
 use crate::lsp::text_document::{
@@ -106,7 +106,7 @@ impl OpenDocument {
         uri: Uri,
         path: Option<PathBuf>,
         kind: ProgramKind,
-        text: &str,
+        text: Rope,
         version: i32,
         config: Arc<MachineConfig>,
     ) -> OpenDocument {
@@ -115,7 +115,7 @@ impl OpenDocument {
             path,
             kind,
             text: Mutex::new(TextState {
-                text: DocumentText::new(text, version),
+                text: DocumentText::from_rope(text, version),
                 revision: 1,
                 pending: Pending::Everything,
                 config,
@@ -129,14 +129,14 @@ impl OpenDocument {
     }
 
     /// The JSON array of the analysis's diagnostics, built from the last one where it still holds.
-    fn diagnostics_array(&self, analysed: &Analysed, encoding: PositionEncoding) -> Arc<Vec<u8>> {
+    fn diagnostics_array(&self, analysed: &Analysed, encoding: PositionEncoding) -> JsonArray {
         let diagnostics = analysed.analysis.diagnostics();
         let all_ascii = analysed.rope.len_bytes() == analysed.rope.len_chars();
         let mut published = lock(&self.published);
         if !all_ascii {
             *published = None;
             let lines = analysed.lines();
-            return Arc::new(diagnostics_json(
+            return JsonArray::from_json(&diagnostics_json(
                 diagnostics,
                 |line_idx| lines.line(line_idx),
                 false,
@@ -148,10 +148,10 @@ impl OpenDocument {
             .filter(|last| last.encoding == encoding)
             .map(|last| &last.array);
         if let Some(previous) = previous.filter(|previous| previous.is_of(diagnostics)) {
-            return Arc::clone(previous.json());
+            return previous.json().clone();
         }
         let array = DiagnosticsArray::build(previous, diagnostics);
-        let json = Arc::clone(array.json());
+        let json = array.json().clone();
         *published = Some(Published { encoding, array });
         json
     }

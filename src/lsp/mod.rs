@@ -27,6 +27,7 @@ mod framing;
 mod gcode_help;
 mod hover;
 mod inlay;
+mod json_string;
 mod log;
 mod memory;
 mod navigation;

@@ -1,13 +1,18 @@
 //! The texts of large `didOpen` messages, taken out by the input guard. The framework would read such
 //! a message into a JSON tree and then into typed parameters, keeping its read buffer as large as the
-//! message afterwards; the guard instead reads it once, straight into typed parameters, keeps the
-//! text here and passes on the message with an empty text, which `didOpen` fills in again from here.
+//! message afterwards; the guard instead reads it once, turns its text straight into the rope the
+//! document keeps (`json_string.rs`), keeps that here and passes on the message with an empty text,
+//! which `didOpen` fills in again from here.
 
 use crate::lsp::documents::lock;
+use crate::lsp::json_string::rope_from_literal;
+use ropey::Rope;
 use serde::Deserialize;
+use serde_json::value::RawValue;
+use std::borrow::Cow;
 use std::collections::VecDeque;
 use std::sync::Mutex;
-use tower_lsp_server::ls_types::{DidOpenTextDocumentParams, Uri};
+use tower_lsp_server::ls_types::{DidOpenTextDocumentParams, TextDocumentItem, Uri};
 
 /// Smaller messages go through the framework as they are.
 pub const LARGE_MESSAGE_BYTES: usize = 256 * 1024;
@@ -20,11 +25,11 @@ const WAITING_TEXTS: usize = 4;
 /// Texts by document and version, waiting for the `didOpen` handler.
 #[derive(Default)]
 pub struct OpenTexts {
-    waiting: Mutex<VecDeque<(Uri, i32, String)>>,
+    waiting: Mutex<VecDeque<(Uri, i32, Rope)>>,
 }
 
 impl OpenTexts {
-    fn put(&self, uri: Uri, version: i32, text: String) {
+    fn put(&self, uri: Uri, version: i32, text: Rope) {
         let mut waiting = lock(&self.waiting);
         waiting.retain(|(other, _, _)| *other != uri);
         waiting.push_back((uri, version, text));
@@ -34,7 +39,7 @@ impl OpenTexts {
     }
 
     /// The text the guard took out of the `didOpen` of `uri` at `version`, if it did.
-    pub fn take(&self, uri: &Uri, version: i32) -> Option<String> {
+    pub fn take(&self, uri: &Uri, version: i32) -> Option<Rope> {
         let mut waiting = lock(&self.waiting);
         let index = waiting
             .iter()
@@ -43,14 +48,33 @@ impl OpenTexts {
     }
 }
 
-/// A `didOpen` notification as the protocol defines it.
+/// A `didOpen` notification as the protocol defines it, its text left as written.
 #[derive(Deserialize)]
-struct DidOpenMessage {
-    method: String,
-    params: DidOpenTextDocumentParams,
+struct DidOpenMessage<'a> {
+    #[serde(borrow)]
+    method: Cow<'a, str>,
+    #[serde(borrow)]
+    params: DidOpenParams<'a>,
     /// A message with an id is a request, which `didOpen` must not be: it goes to the framework,
     /// which answers it.
     id: Option<serde::de::IgnoredAny>,
+}
+
+#[derive(Deserialize)]
+struct DidOpenParams<'a> {
+    #[serde(rename = "textDocument", borrow)]
+    text_document: DocumentWithLiteralText<'a>,
+}
+
+/// `TextDocumentItem` with the text as its JSON literal.
+#[derive(Deserialize)]
+struct DocumentWithLiteralText<'a> {
+    uri: Uri,
+    #[serde(rename = "languageId")]
+    language_id: String,
+    version: i32,
+    #[serde(borrow)]
+    text: &'a RawValue,
 }
 
 /// When `body` is a large `didOpen` notification: keeps its text in `texts` and returns the message
@@ -65,8 +89,17 @@ pub fn take_text_out(body: &[u8], texts: &OpenTexts) -> Option<Vec<u8>> {
     if message.method != "textDocument/didOpen" || message.id.is_some() {
         return None;
     }
-    let mut params = message.params;
-    let text = std::mem::take(&mut params.text_document.text);
+    let document = message.params.text_document;
+    // A text that is not a string is left to the framework, which refuses the message.
+    let text = rope_from_literal(document.text.get())?;
+    let params = DidOpenTextDocumentParams {
+        text_document: TextDocumentItem {
+            uri: document.uri,
+            language_id: document.language_id,
+            version: document.version,
+            text: String::new(),
+        },
+    };
     let forwarded = serde_json::to_vec(&serde_json::json!({
         "jsonrpc": "2.0",
         "method": "textDocument/didOpen",
@@ -111,7 +144,13 @@ mod tests {
         assert_eq!(forwarded["params"]["textDocument"]["version"], 7);
         assert_eq!(forwarded["params"]["textDocument"]["uri"], "file:///a.mpf");
         assert_eq!(texts.take(&uri(), 6), None, "another version");
-        assert_eq!(texts.take(&uri(), 7).as_deref(), Some(text.as_str()));
+        assert_eq!(
+            texts
+                .take(&uri(), 7)
+                .map(|rope| rope.to_string())
+                .as_deref(),
+            Some(text.as_str())
+        );
         assert_eq!(texts.take(&uri(), 7), None, "taken once");
     }
 
@@ -124,6 +163,8 @@ mod tests {
             message("textDocument/didChange", &large, None),
             message("textDocument/didOpen", &large, Some(1)),
             format!("{{\"method\": \"textDocument/didOpen\", \"params\": \"{large}").into_bytes(),
+            // The text is not a string.
+            serde_json::to_vec(&json!({"jsonrpc": "2.0", "method": "textDocument/didOpen", "params": {"textDocument": {"uri": "file:///a.mpf", "languageId": "sinumerik", "version": 7, "text": [large]}}})).unwrap(),
         ] {
             assert_eq!(take_text_out(&body, &texts), None);
         }
@@ -135,10 +176,16 @@ mod tests {
         let texts = OpenTexts::default();
         for index in 0..10 {
             let uri: Uri = format!("file:///{index}.mpf").parse().unwrap();
-            texts.put(uri, 1, index.to_string());
+            texts.put(uri, 1, Rope::from_str(&index.to_string()));
         }
         assert_eq!(lock(&texts.waiting).len(), WAITING_TEXTS);
         let newest: Uri = "file:///9.mpf".parse().unwrap();
-        assert_eq!(texts.take(&newest, 1).as_deref(), Some("9"));
+        assert_eq!(
+            texts
+                .take(&newest, 1)
+                .map(|rope| rope.to_string())
+                .as_deref(),
+            Some("9")
+        );
     }
 }

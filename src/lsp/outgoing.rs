@@ -3,11 +3,11 @@
 //! are serialized straight to text in the sending thread. The framework would first build a JSON
 //! value tree of every notification, which for 24,000 diagnostics took more than ten times as long.
 
+use crate::lsp::diagnostics_array::JsonArray;
 use crate::lsp::log;
 use crate::lsp::stdio::write_all_parts;
 use serde::Serialize;
 use std::io::Write;
-use std::sync::Arc;
 use std::time::Duration;
 use tokio::io::{
     AsyncBufReadExt, AsyncReadExt, AsyncWrite, AsyncWriteExt, BufReader, DuplexStream,
@@ -34,11 +34,11 @@ pub enum Outgoing {
 enum Frame {
     /// A whole message with its header.
     Message(Vec<u8>),
-    /// A message in three pieces, the middle one shared (a large diagnostics array, kept for the next
+    /// A message around a JSON array in shared pieces (a large diagnostics array, kept for the next
     /// publication), so that it is written without being copied.
     Parts {
         head: Vec<u8>,
-        body: Arc<Vec<u8>>,
+        body: JsonArray,
         tail: Vec<u8>,
     },
     /// Everything before this has been queued: flush and stop.
@@ -115,8 +115,8 @@ impl OutgoingSender {
         let _ = self.0.send(Frame::Message(message));
     }
 
-    /// Queues a message written in three pieces: `head` (with the header), `body` and `tail`.
-    pub fn send_parts(&self, head: Vec<u8>, body: Arc<Vec<u8>>, tail: Vec<u8>) {
+    /// Queues a message written in three parts: `head` (with the header), `body` and `tail`.
+    pub fn send_parts(&self, head: Vec<u8>, body: JsonArray, tail: Vec<u8>) {
         let _ = self.0.send(Frame::Parts { head, body, tail });
     }
 
@@ -229,7 +229,10 @@ async fn write_to_stream<O: AsyncWrite + Unpin>(
             Frame::Message(bytes) => output.write_all(bytes).await,
             Frame::Parts { head, body, tail } => {
                 let mut result = Ok(());
-                for part in [&head[..], &body[..], &tail[..]] {
+                let parts = std::iter::once(&head[..])
+                    .chain(body.pieces())
+                    .chain(std::iter::once(&tail[..]));
+                for part in parts {
                     result = output.write_all(part).await;
                     if result.is_err() {
                         break;
@@ -252,7 +255,13 @@ fn write_blocking(mut output: Box<dyn Write + Send>, mut receiver: mpsc::Unbound
         let written = match &frame {
             Frame::End => break,
             Frame::Message(bytes) => write_all_parts(&mut *output, &[bytes]),
-            Frame::Parts { head, body, tail } => write_all_parts(&mut *output, &[head, body, tail]),
+            Frame::Parts { head, body, tail } => {
+                let parts: Vec<&[u8]> = std::iter::once(&head[..])
+                    .chain(body.pieces())
+                    .chain(std::iter::once(&tail[..]))
+                    .collect();
+                write_all_parts(&mut *output, &parts)
+            }
         };
         if written.is_err() || output.flush().is_err() {
             return;

@@ -532,12 +532,13 @@ impl LanguageServer for Backend {
 
     async fn did_open(&self, params: DidOpenTextDocumentParams) {
         let _timer = HandlerTimer::new("textDocument/didOpen", &self.outgoing);
-        let mut item = params.text_document;
-        if item.text.is_empty() {
-            if let Some(text) = self.open_texts.take(&item.uri, item.version) {
-                item.text = text;
-            }
+        let item = params.text_document;
+        // The guard keeps the text of a large didOpen itself, already as a rope.
+        let text = match item.text.is_empty() {
+            true => self.open_texts.take(&item.uri, item.version),
+            false => None,
         }
+        .unwrap_or_else(|| ropey::Rope::from_str(&item.text));
         let path = file_path(&item.uri);
         let kind = program_kind(&item.uri, path.as_deref());
         let config = self.machine_config(path.as_deref());
@@ -545,7 +546,7 @@ impl LanguageServer for Backend {
             item.uri.clone(),
             path,
             kind,
-            &item.text,
+            text,
             item.version,
             config,
         ));

@@ -86,10 +86,11 @@ impl fmt::Display for ChangeError {
 
 impl DocumentText {
     pub fn new(text: &str, version: i32) -> DocumentText {
-        DocumentText {
-            rope: Rope::from_str(text),
-            version,
-        }
+        DocumentText::from_rope(Rope::from_str(text), version)
+    }
+
+    pub fn from_rope(rope: Rope, version: i32) -> DocumentText {
+        DocumentText { rope, version }
     }
 
     /// The number of lines as the core counts them.
