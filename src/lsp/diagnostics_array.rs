@@ -212,6 +212,7 @@ impl DiagnosticsArray {
     }
 
     /// Whether the array is that of exactly `diagnostics`.
+    #[cfg(test)]
     pub fn is_of(&self, diagnostics: &[LineDiagnostic]) -> bool {
         let mut rest = diagnostics;
         for chunk in &self.chunks {
@@ -405,6 +406,16 @@ mod tests {
             .count();
         assert_eq!(shared, 9, "every chunk but the changed one is taken over");
         assert_eq!(built.json().to_vec(), full(&next));
+        let again = DiagnosticsArray::build(Some(&built), &next);
+        assert!(
+            again
+                .chunks
+                .iter()
+                .zip(&built.chunks)
+                .all(|(new, old)| Arc::ptr_eq(new, old)),
+            "nothing changed: every chunk is taken over"
+        );
+        assert_eq!(again.chunks.len(), built.chunks.len());
     }
 
     #[test]

@@ -143,13 +143,11 @@ impl OpenDocument {
                 encoding,
             ));
         }
+        // Unchanged diagnostics are found while building: every chunk is then taken over.
         let previous = published
             .as_ref()
             .filter(|last| last.encoding == encoding)
             .map(|last| &last.array);
-        if let Some(previous) = previous.filter(|previous| previous.is_of(diagnostics)) {
-            return previous.json().clone();
-        }
         let array = DiagnosticsArray::build(previous, diagnostics);
         let json = array.json().clone();
         *published = Some(Published { encoding, array });
