@@ -10,6 +10,7 @@ use serde_json::{json, Value};
 use sinumerik_lsp::analysis::document::{DocumentAnalysis, TextLines};
 use sinumerik_lsp::analysis::ProgramKind;
 use sinumerik_lsp::config::MachineConfig;
+use sinumerik_lsp::diagnostics::Severity;
 use std::sync::Arc;
 
 const SEED_URI: &str = "file:///nonexistent/turning_seed.mpf";
@@ -749,5 +750,105 @@ async fn a_large_program_opened_arrives_whole_and_an_empty_one_stays_empty() {
     client.open(empty, 1, "").await;
     client.diagnostics(empty, 1).await;
     assert_eq!(client.document_text(empty).await, (1, String::new()));
+    client.shutdown().await;
+}
+
+/// The findings a limit of `limit` shows, worked out here from the core's analysis: as VS Code keeps
+/// them, errors first, then warnings, information and hints, each in document order.
+fn expected_within_limit(text: &str, limit: usize) -> Vec<(u64, String)> {
+    let analysis = DocumentAnalysis::new(
+        &TextLines::new(text),
+        Arc::new(MachineConfig::default()),
+        ProgramKind::Main,
+    );
+    let mut ranked: Vec<(usize, usize, usize)> = analysis
+        .diagnostics()
+        .iter()
+        .enumerate()
+        .map(|(index, item)| {
+            let rank = match item.diagnostic.severity {
+                Severity::Error => 0,
+                Severity::Warning => 1,
+                Severity::Information => 2,
+                Severity::Hint => 3,
+            };
+            (rank, index, item.line)
+        })
+        .collect();
+    ranked.sort();
+    ranked.truncate(limit);
+    ranked.sort_by_key(|&(_, index, _)| index);
+    ranked
+        .iter()
+        .map(|&(_, index, _)| {
+            let item = &analysis.diagnostics()[index];
+            (item.line as u64, item.diagnostic.code.as_str().to_string())
+        })
+        .collect()
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn the_diagnostics_limit_keeps_errors_first_adds_a_note_and_follows_the_setting() {
+    let mut text = String::from("G90 G17 G71\n");
+    for _ in 0..60 {
+        text.push_str("N10 Z=AC17\nG3 X30 Y30 I1 J1\nN30 G91 X=IC(5)\nG1 X10 A10 B10 D1 D2\nG90\n");
+    }
+    let all = expected_codes(&text, ProgramKind::Main);
+    let uri = "file:///nonexistent/limited.mpf";
+    let mut client = TestClient::in_process();
+    client
+        .initialize(json!({}), json!({"maxDiagnostics": 100}))
+        .await;
+    client.open(uri, 1, &text).await;
+    let published = client.diagnostics(uri, 1).await;
+    let (note, shown) = published.split_last().expect("the note comes last");
+    assert_eq!(codes(shown), expected_within_limit(&text, 100));
+    assert_eq!(note["severity"], 3);
+    let message = note["message"].as_str().unwrap();
+    assert!(
+        message.starts_with(&format!("{} more findings", all.len() - 100)),
+        "{message}"
+    );
+    // More errors than the limit: only errors are shown.
+    assert!(shown.iter().all(|diagnostic| diagnostic["severity"] == 1));
+
+    // An edit: the new version is limited the same way.
+    client
+        .change(
+            uri,
+            2,
+            json!([{"range": {"start": {"line": 1, "character": 0}, "end": {"line": 1, "character": 0}}, "text": "G1 X1 F100\n"}]),
+        )
+        .await;
+    let edited = "G90 G17 G71\nG1 X1 F100\n".to_string() + &text["G90 G17 G71\n".len()..];
+    let published = client.diagnostics(uri, 2).await;
+    assert_eq!(
+        codes(&published[..published.len() - 1]),
+        expected_within_limit(&edited, 100)
+    );
+
+    // A limit above the number of errors shows every error and the first warnings; none: all.
+    client
+        .notify(
+            "workspace/didChangeConfiguration",
+            json!({"settings": {"sinumerik": {"maxDiagnostics": 250}}}),
+        )
+        .await;
+    let published = client.diagnostics(uri, 2).await;
+    assert_eq!(
+        codes(&published[..published.len() - 1]),
+        expected_within_limit(&edited, 250)
+    );
+    client
+        .notify(
+            "workspace/didChangeConfiguration",
+            json!({"settings": {"sinumerik": {"maxDiagnostics": null}}}),
+        )
+        .await;
+    let published = client.diagnostics(uri, 2).await;
+    assert_eq!(
+        codes(&published),
+        expected_codes(&edited, ProgramKind::Main)
+    );
     client.shutdown().await;
 }

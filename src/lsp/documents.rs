@@ -8,9 +8,11 @@
 use crate::analysis::document::{DocumentAnalysis, LineSource};
 use crate::analysis::ProgramKind;
 use crate::config::MachineConfig;
+use crate::diagnostics::LineDiagnostic;
 use crate::lsp::convert::{diagnostics_json, publish_diagnostics_frame, PositionEncoding};
 use crate::lsp::cross_file::{with_extra, ExtraDiagnostics};
 use crate::lsp::diagnostics_array::{DiagnosticsArray, JsonArray};
+use crate::lsp::diagnostics_limit::{note_json, within_limit};
 use crate::lsp::log;
 use crate::lsp::outgoing::{Outgoing, OutgoingSender};
 use crate::lsp::text_document::{
@@ -99,6 +101,8 @@ struct Published {
 pub struct WorkerContext {
     pub outgoing: OutgoingSender,
     pub encoding: PositionEncoding,
+    /// The `maxDiagnostics` setting (`diagnostics_limit.rs`).
+    pub max_diagnostics: Option<usize>,
 }
 
 impl OpenDocument {
@@ -128,9 +132,28 @@ impl OpenDocument {
         }
     }
 
-    /// The JSON array of the analysis's diagnostics, built from the last one where it still holds.
-    fn diagnostics_array(&self, analysed: &Analysed, encoding: PositionEncoding) -> JsonArray {
-        let diagnostics = analysed.analysis.diagnostics();
+    /// The JSON array of the analysis's diagnostics (at most `limit` of them, and then a note), built
+    /// from the last one where it still holds.
+    fn diagnostics_array(
+        &self,
+        analysed: &Analysed,
+        encoding: PositionEncoding,
+        limit: Option<usize>,
+    ) -> JsonArray {
+        let (diagnostics, left_out) = within_limit(analysed.analysis.diagnostics(), limit);
+        let array = self.array_of(analysed, &diagnostics, encoding);
+        match limit {
+            Some(limit) if left_out > 0 => array.join_array(&note_json(left_out, limit)),
+            _ => array,
+        }
+    }
+
+    fn array_of(
+        &self,
+        analysed: &Analysed,
+        diagnostics: &[LineDiagnostic],
+        encoding: PositionEncoding,
+    ) -> JsonArray {
         let all_ascii = analysed.rope.len_bytes() == analysed.rope.len_chars();
         let mut published = lock(&self.published);
         if !all_ascii {
@@ -344,7 +367,7 @@ impl OpenDocument {
                 let analysed_in = started.elapsed();
                 slot.as_ref().map(|analysed| {
                     let (array, extra_generation) = with_extra(
-                        self.diagnostics_array(analysed, context.encoding),
+                        self.diagnostics_array(analysed, context.encoding, context.max_diagnostics),
                         &self.extra,
                         analysed,
                         context.encoding,

@@ -20,6 +20,7 @@ mod completion;
 mod convert;
 mod cross_file;
 mod diagnostics_array;
+mod diagnostics_limit;
 mod documents;
 mod endpoint_preview;
 mod ext;

@@ -204,6 +204,7 @@ impl Shared {
         WorkerContext {
             outgoing: self.outgoing.clone(),
             encoding: self.encoding(),
+            max_diagnostics: lock(&self.settings).max_diagnostics,
         }
     }
 
@@ -327,6 +328,12 @@ impl Shared {
         }
         if old.cycle_folders != new.cycle_folders {
             self.reindex();
+        }
+        if old.max_diagnostics != new.max_diagnostics {
+            let context = self.context();
+            for document in self.documents.all() {
+                document.republish(&context);
+            }
         }
         if old.inlay_hints != new.inlay_hints && lock(&self.info).refreshes_inlay_hints {
             let client = self.client.clone();

@@ -31,6 +31,9 @@ pub struct Settings {
     pub machine_kind: MachineKind,
     /// Folders of cycles and subprograms outside the workspace folders that the index reads too.
     pub cycle_folders: Vec<PathBuf>,
+    /// At most this many diagnostics are published per document (`diagnostics_limit.rs`); `None`:
+    /// all of them.
+    pub max_diagnostics: Option<usize>,
 }
 
 impl Settings {
@@ -75,6 +78,20 @@ impl Settings {
                     }
                 }
                 // Clients send their whole section; keys of other versions are not an error.
+                "maxDiagnostics" => match value {
+                    Value::Null => self.max_diagnostics = None,
+                    Value::Number(number) if number.as_u64() == Some(0) => {
+                        self.max_diagnostics = None
+                    }
+                    Value::Number(number) if number.as_u64().is_some() => {
+                        self.max_diagnostics = number
+                            .as_u64()
+                            .map(|limit| usize::try_from(limit).unwrap_or(usize::MAX));
+                    }
+                    other => problems.push(format!(
+                        "setting `maxDiagnostics`: expected a whole number (0 or null: no limit), not {other}"
+                    )),
+                },
                 _ => {}
             }
         }
@@ -169,5 +186,30 @@ mod tests {
         assert_eq!(settings.inlay_hints, InlayHintMode::NotPlain);
         assert_eq!(settings.config_file, Some(PathBuf::from("a.toml")));
         assert!(settings.apply(&json!(42)).is_err());
+    }
+
+    #[test]
+    fn the_diagnostics_limit_is_a_whole_number_and_zero_or_null_mean_none() {
+        let mut settings = Settings::default();
+        assert_eq!(settings.max_diagnostics, None);
+        settings.apply(&json!({"maxDiagnostics": 1000})).unwrap();
+        assert_eq!(settings.max_diagnostics, Some(1000));
+        settings.apply(&json!({"maxDiagnostics": 0})).unwrap();
+        assert_eq!(settings.max_diagnostics, None);
+        settings.apply(&json!({"maxDiagnostics": 5})).unwrap();
+        settings.apply(&json!({"maxDiagnostics": null})).unwrap();
+        assert_eq!(settings.max_diagnostics, None);
+        for bad in [json!(-1), json!(2.5), json!("1000")] {
+            settings.max_diagnostics = Some(7);
+            let error = settings
+                .apply(&json!({ "maxDiagnostics": bad }))
+                .unwrap_err();
+            assert!(error.contains("maxDiagnostics"), "{error}");
+            assert_eq!(
+                settings.max_diagnostics,
+                Some(7),
+                "a bad value changes nothing"
+            );
+        }
     }
 }

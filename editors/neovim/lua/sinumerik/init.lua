@@ -14,11 +14,13 @@ M.NUMBERING_MODES = { 'keep', 'all', 'drop' }
 local defaults = {
   -- The server command; the binary must be on PATH unless a full path is given.
   cmd = { 'sinumerik-lsp', 'serve' },
-  -- The `sinumerik` settings section (see the README): inlayHints, machineKind, configFile.
+  -- The `sinumerik` settings section (see the README): inlayHints, machineKind, configFile,
+  -- maxDiagnostics (0: every finding; Neovim shows them all).
   settings = {
     inlayHints = 'notPlain',
     machineKind = 'mill',
     configFile = '',
+    maxDiagnostics = 0,
   },
   -- Files that mark a project's root; the folder of the file when none is found.
   root_markers = { 'sinumerik.toml', '.git' },

@@ -12,6 +12,8 @@ export interface ServerSettings {
   configFile: string;
   /** Folders of cycles and subprograms outside the workspace that the server indexes too. */
   cycleFolders: string[];
+  /** Diagnostics published per document; 0: all of them. */
+  maxDiagnostics: number;
   trace: { server: Trace };
 }
 
@@ -20,6 +22,13 @@ export type SettingReader = (key: string) => unknown;
 
 function oneOf<T extends string>(value: unknown, allowed: readonly T[], fallback: T): T {
   return typeof value === 'string' && (allowed as readonly string[]).includes(value) ? (value as T) : fallback;
+}
+
+/** VS Code shows at most this many problems of one file and drops the rest itself, errors first. */
+export const VSCODE_PROBLEMS_PER_FILE = 1000;
+
+function wholeNumber(value: unknown, fallback: number): number {
+  return typeof value === 'number' && Number.isInteger(value) && value >= 0 ? value : fallback;
 }
 
 export function serverSettings(read: SettingReader): ServerSettings {
@@ -32,6 +41,7 @@ export function serverSettings(read: SettingReader): ServerSettings {
     cycleFolders: Array.isArray(cycleFolders)
       ? cycleFolders.filter((folder): folder is string => typeof folder === 'string').map((folder) => folder.trim()).filter((folder) => folder !== '')
       : [],
+    maxDiagnostics: wholeNumber(read('maxDiagnostics'), VSCODE_PROBLEMS_PER_FILE),
     trace: { server: oneOf(read('trace.server'), ['off', 'messages', 'verbose'] as const, 'off') },
   };
 }
@@ -39,7 +49,7 @@ export function serverSettings(read: SettingReader): ServerSettings {
 /** What a change of settings needs: a new server process (another binary) or just a notification. */
 export function changeNeeds(affects: (key: string) => boolean): 'restart' | 'notify' | 'nothing' {
   if (affects('sinumerik.server.path')) return 'restart';
-  if (['inlayHints', 'machineKind', 'configFile', 'cycleFolders', 'trace.server'].some((key) => affects(`sinumerik.${key}`))) {
+  if (['inlayHints', 'machineKind', 'configFile', 'cycleFolders', 'maxDiagnostics', 'trace.server'].some((key) => affects(`sinumerik.${key}`))) {
     return 'notify';
   }
   return 'nothing';

@@ -64,6 +64,8 @@ test('the settings the server receives are the ones VS Code offers, with the sam
   const folders = properties['sinumerik.cycleFolders'];
   assert.deepEqual([folders.type, folders.items.type, folders.default], ['array', 'string', []]);
   assert.deepEqual(serverSettings((k) => (k === 'cycleFolders' ? folders.default : undefined)).cycleFolders, []);
+  const limit = properties['sinumerik.maxDiagnostics'];
+  assert.deepEqual([limit.type, limit.minimum, limit.default], ['integer', 0, serverSettings(() => undefined).maxDiagnostics]);
 });
 
 test('comments, folding and indentation follow the control structures', () => {

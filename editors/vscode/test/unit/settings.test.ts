@@ -30,12 +30,15 @@ test('when no server exists the message says what was tried and how to fix it', 
 
 test('settings are passed with their defaults and invalid values replaced', () => {
   const values: Record<string, unknown> = {
-    inlayHints: 'all', machineKind: 'lathe', configFile: ' /m/sinumerik.toml ', cycleFolders: [' /nc/cycles ', '', 7, 'cst'], 'trace.server': 'verbose',
+    inlayHints: 'all', machineKind: 'lathe', configFile: ' /m/sinumerik.toml ', cycleFolders: [' /nc/cycles ', '', 7, 'cst'], maxDiagnostics: 0, 'trace.server': 'verbose',
   };
   assert.deepEqual(serverSettings((key) => values[key]), {
-    inlayHints: 'all', machineKind: 'mill', configFile: '/m/sinumerik.toml', cycleFolders: ['/nc/cycles', 'cst'], trace: { server: 'verbose' },
+    inlayHints: 'all', machineKind: 'mill', configFile: '/m/sinumerik.toml', cycleFolders: ['/nc/cycles', 'cst'], maxDiagnostics: 0, trace: { server: 'verbose' },
   });
-  assert.deepEqual(serverSettings(() => undefined), { inlayHints: 'notPlain', machineKind: 'mill', configFile: '', cycleFolders: [], trace: { server: 'off' } });
+  assert.deepEqual(serverSettings(() => undefined), { inlayHints: 'notPlain', machineKind: 'mill', configFile: '', cycleFolders: [], maxDiagnostics: 1000, trace: { server: 'off' } });
+  for (const bad of [-1, 2.5, '500', null]) {
+    assert.equal(serverSettings((key) => (key === 'maxDiagnostics' ? bad : undefined)).maxDiagnostics, 1000, `${bad}`);
+  }
   assert.deepEqual(serverSettings((key) => (key === 'cycleFolders' ? '/nc/cycles' : undefined)).cycleFolders, [], 'not a list');
 });
 
@@ -44,6 +47,7 @@ test('only a new server path needs a restart; other settings are sent to the run
   assert.equal(changeNeeds((key) => key === 'sinumerik.machineKind'), 'notify');
   assert.equal(changeNeeds((key) => key === 'sinumerik.inlayHints'), 'notify');
   assert.equal(changeNeeds((key) => key === 'sinumerik.cycleFolders'), 'notify');
+  assert.equal(changeNeeds((key) => key === 'sinumerik.maxDiagnostics'), 'notify');
   assert.equal(changeNeeds((key) => key === 'editor.fontSize'), 'nothing');
 });
 
