@@ -6,6 +6,8 @@
 //! publishDiagnostics of that version (median and p99) — a space at the start of a line of `cam3d`
 //! (meaning unchanged) and a changed coordinate digit in `inc` (every later position moves); hover
 //! median and p99; the server's resident memory; and what the diagnostics cost to serialize and send.
+//! Each program is measured twice: with every finding published (the server's default), and with
+//! `maxDiagnostics` at 1,000, as the VS Code extension starts the server.
 //!
 //! Run with `cargo bench --bench lsp_latency`. `BENCH_LINES` (default 1,000,000), `BENCH_EDITS` and
 //! `BENCH_HOVERS` (default 200 each) and `BENCH_BUDGET_SECS` (default 240, per measurement: a slow
@@ -261,19 +263,29 @@ fn edit_for(style: &str, line: &str) -> Option<(usize, usize, String)> {
     Some((digit, digit + 1, replacement.to_string()))
 }
 
-fn run(style: &str, line_count: usize) {
+/// The settings a run starts the server with, and what the figures are called.
+struct Setup {
+    name: &'static str,
+    options: Value,
+}
+
+fn run(style: &str, line_count: usize, setup: &Setup) {
     let Some(text) = generated::generate(style, line_count) else {
         println!("{style}: skipped (../shared/bench/gen_program.py or python3 not available)");
         return;
     };
     let mut lines: Vec<String> = text.lines().map(str::to_string).collect();
     let megabytes = text.len() as f64 / 1e6;
-    println!("{style}: {} lines, {megabytes:.1} MB", lines.len());
+    println!(
+        "{style}, {}: {} lines, {megabytes:.1} MB",
+        setup.name,
+        lines.len()
+    );
     let budget = Duration::from_secs(env_number("BENCH_BUDGET_SECS", 240) as u64);
     let mut server = Server::start();
     let (_, id) = server.request(
         "initialize",
-        json!({"processId": null, "rootUri": null, "capabilities": {"general": {"positionEncodings": ["utf-16"]}}}),
+        json!({"processId": null, "rootUri": null, "capabilities": {"general": {"positionEncodings": ["utf-16"]}}, "initializationOptions": setup.options}),
     );
     server.wait_for(|message| message["id"] == id);
     server.notify("initialized", json!({}));
@@ -439,8 +451,20 @@ fn serialization_cost(count: usize) {
 fn main() {
     let line_count = env_number("BENCH_LINES", 1_000_000);
     println!("language server latency over stdio, {line_count}-line programs, release binary");
-    for style in ["cam3d", "inc"] {
-        run(style, line_count);
+    let setups = [
+        Setup {
+            name: "every finding published (the server's default)",
+            options: json!({}),
+        },
+        Setup {
+            name: "maxDiagnostics 1000 (what the VS Code extension sends)",
+            options: json!({"maxDiagnostics": 1000}),
+        },
+    ];
+    for setup in &setups {
+        for style in ["cam3d", "inc"] {
+            run(style, line_count, setup);
+        }
     }
     serialization_cost(24_000);
 }

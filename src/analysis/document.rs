@@ -421,28 +421,37 @@ impl DocumentAnalysis {
         // old ones of the intervals it carried a shift across, and of everything after the point of
         // convergence, stay with their lines moved.
         let prefix_end = self.body.partition_point(|item| item.line < start.line);
-        let old_rest: Vec<LineDiagnostic> = self.body.drain(prefix_end..).collect();
-        let mut kept_ranges = pass.kept.iter().peekable();
         // From an interruption on, everything stays as it was, like after a convergence.
         let converged_at = pass.converged_at.or(pass.interrupted_at);
-        let kept = old_rest.into_iter().filter_map(|mut item| {
-            if item.line < old_region_end {
-                return None;
+        match converged_at {
+            // The common case, an edit whose effect ends at a checkpoint: the old findings from the
+            // point of convergence on stay (all of them, moved), the pass's replace those before, and
+            // the rest of the list is moved once instead of item by item.
+            Some(converged_line) if pass.kept.is_empty() => {
+                let kept_from = prefix_end
+                    + self.body[prefix_end..].partition_point(|item| {
+                        item.line < old_region_end
+                            || item.line.saturating_add_signed(delta) < converged_line
+                    });
+                let fresh = pass.diagnostics.len();
+                self.body.splice(prefix_end..kept_from, pass.diagnostics);
+                if delta != 0 {
+                    for item in &mut self.body[prefix_end + fresh..] {
+                        item.line = item.line.saturating_add_signed(delta);
+                    }
+                }
             }
-            item.line = item.line.saturating_add_signed(delta);
-            if converged_at.is_some_and(|line| item.line >= line) {
-                return Some(item);
-            }
-            while kept_ranges
-                .next_if(|range| range.end <= item.line)
-                .is_some()
-            {}
-            kept_ranges
-                .peek()
-                .is_some_and(|range| range.contains(&item.line))
-                .then_some(item)
-        });
-        merge_by_line(&mut self.body, pass.diagnostics, kept);
+            _ => self.merge_old_findings(
+                prefix_end,
+                pass.diagnostics,
+                &pass.kept,
+                converged_at,
+                MovedLines {
+                    from: old_region_end,
+                    by: delta,
+                },
+            ),
+        }
         match converged_at {
             Some(converged_line) => {
                 for item in &mut self.tail {
@@ -974,6 +983,43 @@ impl DocumentAnalysis {
             }
         }
         pass
+    }
+
+    /// Replaces the old findings from `prefix_end` on by the `fresh` ones of a pass, keeping the old
+    /// ones of the line ranges `kept` (a shift was carried across them) and those from `converged_at`
+    /// on, all moved as `moved` says.
+    fn merge_old_findings(
+        &mut self,
+        prefix_end: usize,
+        fresh: Vec<LineDiagnostic>,
+        kept: &[Range<usize>],
+        converged_at: Option<usize>,
+        moved: MovedLines,
+    ) {
+        let MovedLines {
+            from: old_region_end,
+            by: delta,
+        } = moved;
+        let old_rest: Vec<LineDiagnostic> = self.body.drain(prefix_end..).collect();
+        let mut kept_ranges = kept.iter().peekable();
+        let kept = old_rest.into_iter().filter_map(|mut item| {
+            if item.line < old_region_end {
+                return None;
+            }
+            item.line = item.line.saturating_add_signed(delta);
+            if converged_at.is_some_and(|line| item.line >= line) {
+                return Some(item);
+            }
+            while kept_ranges
+                .next_if(|range| range.end <= item.line)
+                .is_some()
+            {}
+            kept_ranges
+                .peek()
+                .is_some_and(|range| range.contains(&item.line))
+                .then_some(item)
+        });
+        merge_by_line(&mut self.body, fresh, kept);
     }
 
     /// Joins the findings of single lines and those of the end of the program, in the order of a
