@@ -7,13 +7,16 @@
 //! - `text_document.rs`: rope text, `apply_changes`, the lines an edit touched, `LineSource`.
 //! - `convert.rs`: positions in the negotiated encoding, spans to ranges, diagnostics.
 //! - `diagnostics_array.rs`: the published diagnostics' JSON, reused by the next publication.
+//! - `diagnostics_limit.rs`: the findings published under the `maxDiagnostics` setting.
 //! - `hover.rs`, `inlay.rs`, `code_action.rs`, `endpoint_preview.rs`: one feature each.
 //! - `words.rs`: where the words of a block are, for the cursor; `gcode_help.rs`: G-function texts.
 //! - `settings.rs`: settings and each document's machine configuration; `ext.rs`: own protocol types.
 //! - `outgoing.rs`: all output; the server's own notifications serialized straight to text.
 //! - `log.rs`: logging and slow-handler reports; `memory.rs`: the allocator's options.
 //! - `framing.rs`: drops malformed messages before they reach the framework's reader.
-//! - `open_texts.rs`: the texts of large `didOpen` messages, which the guard reads itself.
+//! - `open_texts.rs`: the texts of large `didOpen` messages, which the guard reads itself;
+//!   `json_string.rs` unescapes them into ropes.
+//! - `stdio.rs`: the process's stdin and stdout (pipe buffers, the raw output).
 
 mod code_action;
 mod completion;
