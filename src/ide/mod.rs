@@ -16,6 +16,7 @@
 //! - `cross_file_diagnostics.rs`: W3xx findings that need the symbol table or the workspace.
 //! - `renumber.rs`, `format.rs`: whole-document rewrites returned as text.
 
+pub mod block_numbers;
 pub mod completion;
 pub mod cross_file_diagnostics;
 pub mod cycles;

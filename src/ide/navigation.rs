@@ -114,7 +114,7 @@ pub fn symbol_at(
             _ => {}
         }
     }
-    for number in on_line(&table.block_numbers, line, |entry| entry.line).iter() {
+    for number in table.block_numbers.on_line(line) {
         if hit(number.span) {
             return Some((
                 Symbol::BlockNumber {

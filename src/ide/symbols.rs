@@ -7,6 +7,7 @@
 use crate::analysis::document::LineSource;
 use crate::config::MachineConfig;
 use crate::diagnostics::Span;
+pub use crate::ide::block_numbers::{BlockNumberEntry, BlockNumbers};
 use crate::ide::names::{identifier_prefix, is_type_name, text_of, upper};
 use crate::syntax::ast::{
     AddressKind, AssignTarget, Block, CallKind, ExprKind, JumpKind, JumpTarget, Statement,
@@ -22,17 +23,6 @@ pub struct LabelDefinition {
     /// Upper case, without the colon.
     pub name: String,
     pub line: usize,
-    pub span: Span,
-}
-
-/// `N10` or `:10` at the start of a block.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct BlockNumberEntry {
-    pub value: u64,
-    /// `:10`, a main block.
-    pub main: bool,
-    pub line: usize,
-    /// The whole number word, `N` or `:` included.
     pub span: Span,
 }
 
@@ -201,7 +191,7 @@ pub struct StructureMark {
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct SymbolTable {
     pub labels: Vec<LabelDefinition>,
-    pub block_numbers: Vec<BlockNumberEntry>,
+    pub block_numbers: BlockNumbers,
     pub variables: Vec<VariableDefinition>,
     pub r_parameters: Vec<RParameterUse>,
     pub procedure: Option<ProcedureDefinition>,
