@@ -912,7 +912,13 @@ impl DocumentAnalysis {
                 }
                 of_line.sort_by_key(|item| item.diagnostic.span.start());
                 if let Some(reads) = position_reads.get_mut(index) {
-                    *reads = position_reads_of(&self.config, line, &block, &engine.state);
+                    *reads = position_reads_of(
+                        &self.config,
+                        engine.axis_lookup(),
+                        line,
+                        &block,
+                        &engine.state,
+                    );
                 }
                 true
             });
