@@ -40,6 +40,9 @@ impl AxisLookup {
     }
 
     /// The configuration index of the axis `word` (in `line`) names, if the machine has that axis.
+    /// Inlined, with the comparison of names kept out of line: a call per axis word, with the
+    /// registers the comparison needs saved and restored, cost more than the table lookup itself.
+    #[inline]
     pub fn index(&self, config: &MachineConfig, line: &str, word: &AddressWord) -> Option<usize> {
         let numbered = matches!(word.extension, Some(Extension::Number { .. }));
         if let (false, Some(&[letter])) = (
@@ -57,6 +60,7 @@ impl AxisLookup {
 }
 
 /// The configuration index of the axis a word names, compared without building its name.
+#[inline(never)]
 fn configured_axis_index(config: &MachineConfig, line: &str, word: &AddressWord) -> Option<usize> {
     let letters = line
         .as_bytes()

@@ -500,10 +500,13 @@ impl<'a> Engine<'a> {
                         // A word of an axis the machine does not have (reported as S180) moves
                         // nothing the engine can follow: the block is no move of its own, so no
                         // finding about its motion is made from it.
-                        if self.axes.index(self.config, line, word).is_some() {
-                            moved = true;
+                        let axis = self.axes.index(self.config, line, word);
+                        moved |= axis.is_some();
+                        // A word of an axis that is not configured was reported by the syntax
+                        // layer; there is nothing to track.
+                        if let Some(index) = axis {
+                            self.apply_axis_word(index, line, block, word, &functions, diagnostics);
                         }
-                        self.apply_axis_word(line, block, word, &functions, diagnostics);
                     }
                     AddressKind::Feed if !functions.dwell => {
                         feed_in_block = Some(self.word_value(line, block, word, diagnostics));
@@ -763,9 +766,11 @@ impl<'a> Engine<'a> {
         result
     }
 
-    /// Applies one axis word; returns false when the axis became unknown.
+    /// Applies one axis word of the configured axis `index`; returns false when the axis became
+    /// unknown.
     fn apply_axis_word(
         &mut self,
+        index: usize,
         line: &str,
         block: &Block,
         word: &AddressWord,
@@ -773,10 +778,6 @@ impl<'a> Engine<'a> {
         diagnostics: &mut Vec<Diagnostic>,
     ) -> bool {
         let name = AxisName(line, word);
-        let Some(index) = self.axes.index(self.config, line, word) else {
-            // Not a configured axis: the syntax layer reported it; nothing to track.
-            return true;
-        };
         self.state.touched[index] = true;
         self.written[index] = 1;
         let kind = self.config.axes[index].kind;
