@@ -379,8 +379,12 @@ impl<'a> Engine<'a> {
             &mut state.machine,
             &mut state.offset,
         ] {
+            // Written only where a value is not finite: almost never, and the loop runs for every
+            // axis after every block.
             for value in values.iter_mut() {
-                *value = finite(value);
+                if value.is_some_and(|value| !value.is_finite()) {
+                    *value = None;
+                }
             }
         }
         if state

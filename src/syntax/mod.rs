@@ -165,7 +165,10 @@ mod tests {
     #[test]
     fn a_definition_counts_only_before_the_comment() {
         assert_eq!(macro_defined_by("N5 dEfInE LIFT AS G0 Z50"), Some("LIFT"));
-        assert_eq!(macro_defined_by("D1 DEFINE LIFT AS G0 ; DEFINE B AS"), Some("LIFT"));
+        assert_eq!(
+            macro_defined_by("D1 DEFINE LIFT AS G0 ; DEFINE B AS"),
+            Some("LIFT")
+        );
         assert_eq!(macro_defined_by("G0 X1 ; DEFINE LIFT AS G0 Z50"), None);
         assert_eq!(macro_defined_by("DEFI;NE LIFT AS G0"), None);
         assert_eq!(macro_defined_by("DEFINE;"), None);
