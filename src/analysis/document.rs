@@ -92,6 +92,17 @@ impl LineSource for TextLines<'_> {
             None => Cow::Borrowed(""),
         }
     }
+
+    /// Walks the line ranges directly: a full analysis reads every line twice, and a call of
+    /// [`LineSource::line`] per line cost more than the slicing itself.
+    fn for_each_line(&self, start: usize, visit: &mut dyn FnMut(usize, &str) -> bool) {
+        let ranges = self.ranges.get(start..).unwrap_or_default();
+        for (index, &(line_start, line_end)) in (start..).zip(ranges) {
+            if !visit(index, &self.text[line_start..line_end]) {
+                return;
+            }
+        }
+    }
 }
 
 /// The modal state in effect at one point of the program, in words a person reads. `None` fields are
