@@ -137,7 +137,7 @@ mod tests {
         ];
         let line = "X1 x2 Y3 y4 Z5 C1=6 C7 AX=8 U9 F10 I1 POS[X]=2";
         let found = both_ways(&config, line);
-        assert!(found.len() >= 9, "{found:?}");
+        assert_eq!(found.len(), 12, "{found:?}");
         for (table, compared) in &found {
             assert_eq!(table, compared);
         }
@@ -145,7 +145,8 @@ mod tests {
         assert_eq!(found[1].0, Some(0));
         assert_eq!(found[2].0, Some(1));
         assert_eq!(found[4].0, None, "Z is not configured");
-        assert_eq!(found[5].0, Some(3));
+        assert_eq!(found[5].0, Some(3), "C1= by its extension");
+        assert_eq!(found[7].0, Some(4), "AX by its name");
     }
 
     #[test]
