@@ -181,23 +181,20 @@ impl ModalState {
             .unwrap_or_default()
     }
 
-    /// Whether `code` is the active function of `group`. The codes compare as numbers: these
-    /// questions are asked several times for every axis word.
-    fn active_is(&self, group: usize, code: GCode) -> bool {
-        self.groups.get(group).copied().flatten() == Some(code)
-    }
-
     /// G91 active: `Some(true)`; G90: `Some(false)`; `None` in a subprogram that has not programmed
     /// either (the caller's mode applies, unknown here).
     pub fn is_incremental(&self) -> Option<bool> {
         self.groups[14].map(|code| code == known::G91)
     }
 
+    // The questions below are asked several times for every axis word: each reads its group once
+    // and compares the active function as a number.
+
     /// The factor from programmed lengths to the basic system: 25.4 for G70/G700 on a metric machine,
     /// 1/25.4 for G71/G710 on an inch machine, else 1; `None` when the unit group is unknown.
     pub fn length_factor(&self, metric_machine: bool) -> Option<f64> {
-        self.groups[13]?;
-        let inch_programmed = self.active_is(13, known::G70) || self.active_is(13, known::G700);
+        let units = self.groups[13]?;
+        let inch_programmed = matches!(units, known::G70 | known::G700);
         Some(match (metric_machine, inch_programmed) {
             (true, true) => 25.4,
             (false, false) => 1.0 / 25.4,
@@ -207,13 +204,9 @@ impl ModalState {
 
     /// G700/G710 also convert the feed; `None` when the unit group is unknown.
     pub fn feed_factor(&self, metric_machine: bool) -> Option<f64> {
-        self.groups[13]?;
+        let units = self.groups[13]?;
         Some(
-            match (
-                metric_machine,
-                self.active_is(13, known::G700),
-                self.active_is(13, known::G710),
-            ) {
+            match (metric_machine, units == known::G700, units == known::G710) {
                 (true, true, _) => 25.4,
                 (false, _, true) => 1.0 / 25.4,
                 _ => 1.0,
@@ -224,20 +217,17 @@ impl ModalState {
     /// How the transverse axis reads values: (absolute values are diameters, incremental values are
     /// diameters), by the modal group 29 (reference §3.7); `None` when the group is unknown.
     pub fn diameter_mode(&self) -> Option<(bool, bool)> {
-        self.groups[29]?;
-        Some(if self.active_is(29, known::DIAMON) {
-            (true, true)
-        } else if self.active_is(29, known::DIAM90) {
-            (true, false)
-        } else {
-            (false, false)
+        Some(match self.groups[29]? {
+            known::DIAMON => (true, true),
+            known::DIAM90 => (true, false),
+            _ => (false, false),
         })
     }
 
     /// Whether the position display shows the transverse axis as a diameter; `None` when unknown.
     pub fn shows_diameter(&self) -> Option<bool> {
-        self.groups[29]?;
-        Some(self.active_is(29, known::DIAMON) || self.active_is(29, known::DIAM90))
+        let diameter = self.groups[29]?;
+        Some(matches!(diameter, known::DIAMON | known::DIAM90))
     }
 
     /// A subprogram starts with its caller's modal state, which is not known here: the groups that
