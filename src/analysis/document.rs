@@ -22,7 +22,7 @@ pub use crate::analysis::resolution::{ResolutionMode, WordResolution};
 use crate::analysis::state::{ModalState, Pole};
 use crate::analysis::{is_proc_header, Move, ProgramKind};
 use crate::config::MachineConfig;
-use crate::diagnostics::LineDiagnostic;
+use crate::diagnostics::{Diagnostic, LineDiagnostic};
 use crate::syntax::structure::StructureChecker;
 use crate::syntax::{lines, macro_defined_by, Block, LineParser, SyntaxContext};
 use std::borrow::Cow;
@@ -90,6 +90,17 @@ impl LineSource for TextLines<'_> {
         match self.ranges.get(index) {
             Some(&(start, end)) => Cow::Borrowed(&self.text[start..end]),
             None => Cow::Borrowed(""),
+        }
+    }
+
+    /// Walks the line ranges directly: a full analysis reads every line twice, and a call of
+    /// [`LineSource::line`] per line cost more than the slicing itself.
+    fn for_each_line(&self, start: usize, visit: &mut dyn FnMut(usize, &str) -> bool) {
+        let ranges = self.ranges.get(start..).unwrap_or_default();
+        for (index, &(line_start, line_end)) in (start..).zip(ranges) {
+            if !visit(index, &self.text[line_start..line_end]) {
+                return;
+            }
         }
     }
 }
@@ -903,25 +914,23 @@ impl DocumentAnalysis {
                 pass.lines_read += 1;
                 let first_of_line = pass.diagnostics.len();
                 parser.parse(line, &self.context, &mut block, &mut line_findings);
-                pass.diagnostics
-                    .extend(line_findings.drain(..).map(|diagnostic| LineDiagnostic {
-                        line: index,
-                        diagnostic,
-                    }));
+                move_findings(&mut line_findings, index, &mut pass.diagnostics);
                 structure.feed(index, &block, &mut pass.diagnostics);
                 engine.step(line, &block, &mut engine_findings);
-                pass.diagnostics
-                    .extend(engine_findings.drain(..).map(|diagnostic| LineDiagnostic {
-                        line: index,
-                        diagnostic,
-                    }));
+                move_findings(&mut engine_findings, index, &mut pass.diagnostics);
                 let of_line = &mut pass.diagnostics[first_of_line..];
                 for item in of_line.iter_mut() {
                     item.diagnostic.severity = self.config.severity_of(item.diagnostic.code);
                 }
                 of_line.sort_by_key(|item| item.diagnostic.span.start());
                 if let Some(reads) = position_reads.get_mut(index) {
-                    *reads = position_reads_of(&self.config, line, &block, &engine.state);
+                    *reads = position_reads_of(
+                        &self.config,
+                        engine.axis_lookup(),
+                        line,
+                        &block,
+                        &engine.state,
+                    );
                 }
                 true
             });
@@ -1053,6 +1062,19 @@ fn merge_by_line(
 }
 
 /// The whole-document facts a line carries.
+/// Moves the findings of the block on `line` to the document's. Most blocks have none, and the
+/// extension of the document's findings costs more than asking first.
+fn move_findings(findings: &mut Vec<Diagnostic>, line: usize, into: &mut Vec<LineDiagnostic>) {
+    if findings.is_empty() {
+        return;
+    }
+    into.extend(
+        findings
+            .drain(..)
+            .map(|diagnostic| LineDiagnostic { line, diagnostic }),
+    );
+}
+
 fn line_flags_of(line: &str) -> u8 {
     let mut flags = 0;
     if macro_defined_by(line).is_some() {

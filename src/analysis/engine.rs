@@ -3,6 +3,7 @@
 //! subprograms, jumps) turns the affected values into "unknown" or "uncertain": it never shows a
 //! number it cannot stand behind.
 
+use crate::analysis::axis_lookup::AxisLookup;
 use crate::analysis::eval::{evaluate, EvalError, Variables};
 use crate::analysis::state::ModalState;
 use crate::config::{AxisKind, MachineConfig};
@@ -124,6 +125,8 @@ pub struct Engine<'a> {
     memory: ProgramMemory,
     /// The configuration indexes of the first and second axis of G17, G18 and G19.
     plane_axis_cache: [(Option<usize>, Option<usize>); 3],
+    /// The axis of each axis word, by its letter for the common words.
+    axes: AxisLookup,
 }
 
 /// What the engine remembers about the program beyond the modal state: its macros and what the
@@ -233,6 +236,7 @@ impl<'a> Engine<'a> {
                 };
                 (index(first), index(second))
             }),
+            axes: AxisLookup::new(config),
         }
     }
 
@@ -303,6 +307,7 @@ impl<'a> Engine<'a> {
             expansion_depth,
             memory: _,
             plane_axis_cache,
+            axes,
         } = Engine::new(config);
         Engine {
             config,
@@ -319,7 +324,13 @@ impl<'a> Engine<'a> {
             expansion_depth,
             memory: snapshot.memory,
             plane_axis_cache,
+            axes,
         }
+    }
+
+    /// How this engine finds the configured axis of an axis word.
+    pub fn axis_lookup(&self) -> &AxisLookup {
+        &self.axes
     }
 
     /// Whether a label, jump or control structure has been passed, so that values may not follow the
@@ -368,8 +379,12 @@ impl<'a> Engine<'a> {
             &mut state.machine,
             &mut state.offset,
         ] {
+            // Written only where a value is not finite: almost never, and the loop runs for every
+            // axis after every block.
             for value in values.iter_mut() {
-                *value = finite(value);
+                if value.is_some_and(|value| !value.is_finite()) {
+                    *value = None;
+                }
             }
         }
         if state
@@ -489,10 +504,13 @@ impl<'a> Engine<'a> {
                         // A word of an axis the machine does not have (reported as S180) moves
                         // nothing the engine can follow: the block is no move of its own, so no
                         // finding about its motion is made from it.
-                        if configured_axis_index(self.config, line, word).is_some() {
-                            moved = true;
+                        let axis = self.axes.index(self.config, line, word);
+                        moved |= axis.is_some();
+                        // A word of an axis that is not configured was reported by the syntax
+                        // layer; there is nothing to track.
+                        if let Some(index) = axis {
+                            self.apply_axis_word(index, line, block, word, &functions, diagnostics);
                         }
-                        self.apply_axis_word(line, block, word, &functions, diagnostics);
                     }
                     AddressKind::Feed if !functions.dwell => {
                         feed_in_block = Some(self.word_value(line, block, word, diagnostics));
@@ -752,9 +770,11 @@ impl<'a> Engine<'a> {
         result
     }
 
-    /// Applies one axis word; returns false when the axis became unknown.
+    /// Applies one axis word of the configured axis `index`; returns false when the axis became
+    /// unknown.
     fn apply_axis_word(
         &mut self,
+        index: usize,
         line: &str,
         block: &Block,
         word: &AddressWord,
@@ -762,10 +782,6 @@ impl<'a> Engine<'a> {
         diagnostics: &mut Vec<Diagnostic>,
     ) -> bool {
         let name = AxisName(line, word);
-        let Some(index) = configured_axis_index(self.config, line, word) else {
-            // Not a configured axis: the syntax layer reported it; nothing to track.
-            return true;
-        };
         self.state.touched[index] = true;
         self.written[index] = 1;
         let kind = self.config.axes[index].kind;
@@ -1212,7 +1228,7 @@ impl<'a> Engine<'a> {
                 if word.kind != AddressKind::Axis {
                     continue;
                 }
-                let Some(index) = configured_axis_index(self.config, line, word) else {
+                let Some(index) = self.axes.index(self.config, line, word) else {
                     continue;
                 };
                 let slot = if Some(index) == first {
@@ -1276,7 +1292,7 @@ impl<'a> Engine<'a> {
         // Only the axis perpendicular to the plane may join AP/RP (reference §5.3, T97).
         let plane_axis_written = statements.iter().any(|statement| {
             matches!(statement, Statement::Address(word) if word.kind == AddressKind::Axis && {
-                configured_axis_index(self.config, line, word).is_some_and(|index| plane_axes.contains(&index))
+                self.axes.index(self.config, line, word).is_some_and(|index| plane_axes.contains(&index))
             })
         });
         if plane_axis_written {
@@ -1601,46 +1617,6 @@ impl std::fmt::Display for AxisName<'_> {
         }
         Ok(())
     }
-}
-
-/// The configuration index of the axis a word names, compared without building its name.
-pub(crate) fn configured_axis_index(
-    config: &MachineConfig,
-    line: &str,
-    word: &AddressWord,
-) -> Option<usize> {
-    let letters = line
-        .as_bytes()
-        .get(word.name.start()..word.name.end())
-        .unwrap_or_default();
-    let mut digits_buffer = [0u8; 10];
-    let digits: &[u8] = match &word.extension {
-        Some(Extension::Number { value, .. }) => {
-            // The decimal digits of the extension, as `to_string` writes them.
-            let mut remaining = *value;
-            let mut start = digits_buffer.len();
-            loop {
-                start -= 1;
-                digits_buffer[start] = b'0' + (remaining % 10) as u8;
-                remaining /= 10;
-                if remaining == 0 {
-                    break;
-                }
-            }
-            &digits_buffer[start..]
-        }
-        _ => &[],
-    };
-    // Compared byte by byte: these names are one to three bytes long, and a call of the library's
-    // memcmp per configured axis and word cost more than the rest of the lookup.
-    config.axes.iter().position(|axis| {
-        let name = axis.name.as_bytes();
-        name.len() == letters.len() + digits.len()
-            && name
-                .iter()
-                .zip(letters.iter().chain(digits))
-                .all(|(configured, written)| configured.eq_ignore_ascii_case(written))
-    })
 }
 
 fn find_word(statements: &[Statement], kind: AddressKind) -> Option<&AddressWord> {

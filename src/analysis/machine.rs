@@ -107,13 +107,16 @@ pub fn reexpress(state: &mut ModalState, slots: &AxisSlots, replaced: Replaced) 
 /// machine value is already set). A geometry axis the block did not program moves too when the frame
 /// mixes it with one that was (a rotation), or when the frame is unknown.
 pub fn update_after_block(state: &mut ModalState, slots: &AxisSlots, written: &[u8]) {
+    // `written` and the slots have one entry per configured axis; walking them side by side, rather
+    // than by index, spares the bounds checks of this function that runs after every block.
+    debug_assert_eq!(written.len(), slots.slots.len());
     let mut written_slots = [false; 3];
     let mut any_written = false;
-    for (index, kind) in written.iter().enumerate() {
+    for (kind, slot) in written.iter().zip(&slots.slots) {
         if *kind == 1 {
             any_written = true;
-            if let Some(slot) = slots.slot(index) {
-                written_slots[slot] = true;
+            if let Some(slot) = slot {
+                written_slots[*slot] = true;
             }
         }
     }
@@ -136,23 +139,29 @@ pub fn update_after_block(state: &mut ModalState, slots: &AxisSlots, written: &[
             }
         }
     }
-    let point = if moved_slots.contains(&true) {
-        slots.geometry_point(&state.positions)
-    } else {
-        [None; 3]
+    // Without a known frame a moved geometry axis gets an unknown machine position: the point is
+    // needed only with a frame.
+    let point = match state.frame {
+        Some(_) if moved_slots.contains(&true) => slots.geometry_point(&state.positions),
+        _ => [None; 3],
     };
-    for (index, kind) in written.iter().enumerate() {
-        let slot = slots.slot(index);
-        let relative = match (*kind, slot) {
+    let frame = state.frame;
+    let axes = written
+        .iter()
+        .zip(&slots.slots)
+        .zip(&state.positions)
+        .zip(&state.offset);
+    for ((((kind, slot), position), offset), machine) in axes.zip(&mut state.machine) {
+        let relative = match (*kind, *slot) {
             (2, _) => continue,
             (_, Some(slot)) if moved_slots[slot] => {
-                state.frame.and_then(|frame| frame.apply_axis(slot, point))
+                frame.and_then(|frame| frame.apply_axis(slot, point))
             }
-            (1, None) => state.positions[index],
+            (1, None) => *position,
             _ => continue,
         };
-        state.machine[index] = relative
-            .zip(state.offset[index])
+        *machine = relative
+            .zip(*offset)
             .map(|(relative, offset)| relative + offset);
     }
 }

@@ -9,6 +9,7 @@
 //! system frames, calls of subprograms and cycles, transformations) or "uncertain" (everything after a
 //! jump or control structure, because the engine evaluates in program order).
 
+pub mod axis_lookup;
 pub mod circle;
 pub mod document;
 pub mod engine;

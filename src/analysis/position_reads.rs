@@ -8,10 +8,12 @@
 //! G0/G1/G2/G3 moves with incremental words, feeds, spindles, tools, comments and variables counts
 //! as reading every axis absolutely.
 
+use crate::analysis::axis_lookup::AxisLookup;
 use crate::analysis::engine::PositionShift;
 use crate::analysis::state::ModalState;
 use crate::config::{AxisKind, MachineConfig};
 use crate::syntax::ast::{AddressKind, Block, Modifier, NamedAddress, Statement};
+use crate::syntax::gcodes::known;
 
 /// The flag of a block that is not shift-safe for any axis.
 pub const READS_ALL: u8 = 0x80;
@@ -19,10 +21,17 @@ pub const READS_ALL: u8 = 0x80;
 pub const SHIFTABLE_AXES: usize = 7;
 
 /// The axes (bit per configuration index below [`SHIFTABLE_AXES`]) that `block` reads or sets
-/// absolutely, or [`READS_ALL`]. `after` is the state after the block (its own G90/G91 included).
-pub fn position_reads(config: &MachineConfig, line: &str, block: &Block, after: &ModalState) -> u8 {
+/// absolutely, or [`READS_ALL`]. `after` is the state after the block (its own G90/G91 included);
+/// `axes` finds the configured axis of each word.
+pub fn position_reads(
+    config: &MachineConfig,
+    axes: &AxisLookup,
+    line: &str,
+    block: &Block,
+    after: &ModalState,
+) -> u8 {
     let motion_is_plain = after.groups[1]
-        .is_some_and(|code| matches!(code.name().as_ref(), "G0" | "G1" | "G2" | "G3"));
+        .is_some_and(|code| matches!(code, known::G0 | known::G1 | known::G2 | known::G3));
     let mut mask = 0u8;
     for statement in block.interpreted_statements() {
         match statement {
@@ -36,9 +45,7 @@ pub fn position_reads(config: &MachineConfig, line: &str, block: &Block, after: 
             }
             Statement::Address(word) => match word.kind {
                 AddressKind::Axis => {
-                    let Some(index) =
-                        crate::analysis::engine::configured_axis_index(config, line, word)
-                    else {
+                    let Some(index) = axes.index(config, line, word) else {
                         continue;
                     };
                     let linear = matches!(

@@ -3,7 +3,7 @@
 
 use crate::analysis::eval::Variables;
 use crate::config::MachineConfig;
-use crate::syntax::gcodes::GCode;
+use crate::syntax::gcodes::{known, GCode};
 
 /// Number of G groups tracked (the highest group number in the table is below this).
 pub const GROUP_COUNT: usize = 64;
@@ -181,25 +181,20 @@ impl ModalState {
             .unwrap_or_default()
     }
 
-    fn active_is(&self, group: usize, name: &str) -> bool {
-        self.groups
-            .get(group)
-            .copied()
-            .flatten()
-            .is_some_and(|code| code.name() == name)
-    }
-
     /// G91 active: `Some(true)`; G90: `Some(false)`; `None` in a subprogram that has not programmed
     /// either (the caller's mode applies, unknown here).
     pub fn is_incremental(&self) -> Option<bool> {
-        self.groups[14].map(|code| code.name() == "G91")
+        self.groups[14].map(|code| code == known::G91)
     }
+
+    // The questions below are asked several times for every axis word: each reads its group once
+    // and compares the active function as a number.
 
     /// The factor from programmed lengths to the basic system: 25.4 for G70/G700 on a metric machine,
     /// 1/25.4 for G71/G710 on an inch machine, else 1; `None` when the unit group is unknown.
     pub fn length_factor(&self, metric_machine: bool) -> Option<f64> {
-        self.groups[13]?;
-        let inch_programmed = self.active_is(13, "G70") || self.active_is(13, "G700");
+        let units = self.groups[13]?;
+        let inch_programmed = matches!(units, known::G70 | known::G700);
         Some(match (metric_machine, inch_programmed) {
             (true, true) => 25.4,
             (false, false) => 1.0 / 25.4,
@@ -209,13 +204,9 @@ impl ModalState {
 
     /// G700/G710 also convert the feed; `None` when the unit group is unknown.
     pub fn feed_factor(&self, metric_machine: bool) -> Option<f64> {
-        self.groups[13]?;
+        let units = self.groups[13]?;
         Some(
-            match (
-                metric_machine,
-                self.active_is(13, "G700"),
-                self.active_is(13, "G710"),
-            ) {
+            match (metric_machine, units == known::G700, units == known::G710) {
                 (true, true, _) => 25.4,
                 (false, _, true) => 1.0 / 25.4,
                 _ => 1.0,
@@ -226,20 +217,17 @@ impl ModalState {
     /// How the transverse axis reads values: (absolute values are diameters, incremental values are
     /// diameters), by the modal group 29 (reference §3.7); `None` when the group is unknown.
     pub fn diameter_mode(&self) -> Option<(bool, bool)> {
-        self.groups[29]?;
-        Some(if self.active_is(29, "DIAMON") {
-            (true, true)
-        } else if self.active_is(29, "DIAM90") {
-            (true, false)
-        } else {
-            (false, false)
+        Some(match self.groups[29]? {
+            known::DIAMON => (true, true),
+            known::DIAM90 => (true, false),
+            _ => (false, false),
         })
     }
 
     /// Whether the position display shows the transverse axis as a diameter; `None` when unknown.
     pub fn shows_diameter(&self) -> Option<bool> {
-        self.groups[29]?;
-        Some(self.active_is(29, "DIAMON") || self.active_is(29, "DIAM90"))
+        let diameter = self.groups[29]?;
+        Some(matches!(diameter, known::DIAMON | known::DIAM90))
     }
 
     /// A subprogram starts with its caller's modal state, which is not known here: the groups that
@@ -263,10 +251,10 @@ impl ModalState {
 
     /// The active plane as an index: 0 for G17, 1 for G18, 2 for G19; `None` when inherited.
     pub fn plane_index(&self) -> Option<usize> {
-        match self.groups[6]?.name().as_ref() {
-            "G17" => Some(0),
-            "G18" => Some(1),
-            "G19" => Some(2),
+        match self.groups[6]? {
+            known::G17 => Some(0),
+            known::G18 => Some(1),
+            known::G19 => Some(2),
             _ => None,
         }
     }

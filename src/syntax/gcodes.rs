@@ -373,6 +373,31 @@ pub static TABLE: &[GCodeInfo] = &[
     n("ORISON", 61, 2, true),
 ];
 
+/// The functions the analysis asks about in every block, found in [`TABLE`] when the program is
+/// compiled: asking whether G91 is active then compares two numbers instead of two names. Table names
+/// are unique (tested), so comparing these codes says the same as comparing the names.
+pub mod known {
+    use super::GCode;
+
+    pub const G0: GCode = GCode::in_table("G0");
+    pub const G1: GCode = GCode::in_table("G1");
+    pub const G2: GCode = GCode::in_table("G2");
+    pub const G3: GCode = GCode::in_table("G3");
+    pub const CIP: GCode = GCode::in_table("CIP");
+    pub const CT: GCode = GCode::in_table("CT");
+    pub const G17: GCode = GCode::in_table("G17");
+    pub const G18: GCode = GCode::in_table("G18");
+    pub const G19: GCode = GCode::in_table("G19");
+    pub const G41: GCode = GCode::in_table("G41");
+    pub const G42: GCode = GCode::in_table("G42");
+    pub const G70: GCode = GCode::in_table("G70");
+    pub const G700: GCode = GCode::in_table("G700");
+    pub const G710: GCode = GCode::in_table("G710");
+    pub const G91: GCode = GCode::in_table("G91");
+    pub const DIAMON: GCode = GCode::in_table("DIAMON");
+    pub const DIAM90: GCode = GCode::in_table("DIAM90");
+}
+
 /// Index of [`TABLE`] by G number and by name, built once.
 struct LookupTables {
     /// `u16::MAX` where no G function has that number.
@@ -403,6 +428,27 @@ pub fn is_syntax_defining_group(group: u8) -> bool {
 }
 
 impl GCode {
+    /// The entry of [`TABLE`] with exactly this canonical name, found at compile time; a name that
+    /// is not in the table stops the compilation.
+    const fn in_table(name: &str) -> GCode {
+        let name = name.as_bytes();
+        let mut index = 0;
+        while index < TABLE.len() {
+            let candidate = TABLE[index].name.as_bytes();
+            if candidate.len() == name.len() {
+                let mut position = 0;
+                while position < name.len() && candidate[position] == name[position] {
+                    position += 1;
+                }
+                if position == name.len() {
+                    return GCode::Known(index as u16);
+                }
+            }
+            index += 1;
+        }
+        panic!("a G function the analysis names is missing from the table");
+    }
+
     /// Looks up `G<number>`; leading zeros do not matter (`G01` is `G1`).
     pub fn from_number(number: u32) -> Option<GCode> {
         if (505..=599).contains(&number) {
@@ -479,6 +525,32 @@ mod tests {
         assert_eq!(GCode::from_name("diamon").unwrap().group(), 29);
         assert_eq!(GCode::from_name("TRANS").unwrap().group(), 3);
         assert_eq!(GCode::from_name("G90"), None);
+    }
+
+    #[test]
+    fn known_functions_carry_their_names() {
+        use known::*;
+        for (code, name) in [
+            (G0, "G0"),
+            (G1, "G1"),
+            (G2, "G2"),
+            (G3, "G3"),
+            (CIP, "CIP"),
+            (CT, "CT"),
+            (G17, "G17"),
+            (G18, "G18"),
+            (G19, "G19"),
+            (G41, "G41"),
+            (G42, "G42"),
+            (G70, "G70"),
+            (G700, "G700"),
+            (G710, "G710"),
+            (G91, "G91"),
+            (DIAMON, "DIAMON"),
+            (DIAM90, "DIAM90"),
+        ] {
+            assert_eq!(code.name(), name);
+        }
     }
 
     #[test]

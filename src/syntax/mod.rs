@@ -116,20 +116,28 @@ pub fn macro_defined_by(line: &str) -> Option<&str> {
         .then_some(name)
 }
 
+/// Where `needle` (a word without `;`) first occurs in `haystack` before its comment, in any case.
 fn find_ascii_case_insensitive(haystack: &str, needle: &str) -> Option<usize> {
-    let comment_start = memchr::memchr(b';', haystack.as_bytes()).unwrap_or(haystack.len());
-    let code = &haystack.as_bytes()[..comment_start];
+    let code = haystack.as_bytes();
     let needle = needle.as_bytes();
+    debug_assert!(!needle.contains(&b';'));
     let first = *needle.first()?;
     // Every line is searched when a document is opened, so the search jumps between the places
-    // where the needle's first letter occurs instead of comparing at every byte.
+    // where the needle's first letter occurs instead of comparing at every byte. The same search
+    // stops at the comment: most lines hold neither, and one pass over them costs half of finding
+    // the comment first. A needle without `;` cannot match across the comment's start, so the
+    // window may reach into the comment.
     let mut from = 0;
-    while let Some(offset) = memchr::memchr2(
+    while let Some(offset) = memchr::memchr3(
+        b';',
         first.to_ascii_uppercase(),
         first.to_ascii_lowercase(),
         &code[from..],
     ) {
         let at = from + offset;
+        if code[at] == b';' {
+            return None;
+        }
         if code
             .get(at..at + needle.len())
             .is_some_and(|window| window.eq_ignore_ascii_case(needle))
@@ -152,5 +160,18 @@ mod tests {
         assert_eq!(found, ["define A AS G1 ; DEFINE", "N10 Define B AS G2"]);
         assert_eq!(macro_names(text).collect::<Vec<_>>(), ["A", "B"]);
         assert_eq!(lines_containing("DEFIN", b"DEFINE").count(), 0);
+    }
+
+    #[test]
+    fn a_definition_counts_only_before_the_comment() {
+        assert_eq!(macro_defined_by("N5 dEfInE LIFT AS G0 Z50"), Some("LIFT"));
+        assert_eq!(
+            macro_defined_by("D1 DEFINE LIFT AS G0 ; DEFINE B AS"),
+            Some("LIFT")
+        );
+        assert_eq!(macro_defined_by("G0 X1 ; DEFINE LIFT AS G0 Z50"), None);
+        assert_eq!(macro_defined_by("DEFI;NE LIFT AS G0"), None);
+        assert_eq!(macro_defined_by("DEFINE;"), None);
+        assert_eq!(macro_defined_by("N10 D2 X5"), None);
     }
 }

@@ -900,7 +900,19 @@ impl<'a> Parser<'a> {
         }
     }
 
+    /// Reports an axis word of an axis the machine does not have. Inlined for the common word of a
+    /// configured one-letter axis, with everything else out of line: a call for every axis word cost
+    /// more than the check.
+    #[inline]
     fn check_axis_configured(&mut self, letter: u8, extension: Option<u32>, span: Span) {
+        if extension.is_none() && self.context.axis_kind_by_letter(letter).is_some() {
+            return;
+        }
+        self.check_axis_configured_by_name(letter, extension, span);
+    }
+
+    #[inline(never)]
+    fn check_axis_configured_by_name(&mut self, letter: u8, extension: Option<u32>, span: Span) {
         let configured = match extension {
             None => self.context.axis_kind_by_letter(letter).is_some(),
             Some(_) => {

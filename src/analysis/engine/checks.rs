@@ -5,11 +5,11 @@
 use super::{Engine, PolarWords};
 use crate::diagnostics::{Code, Diagnostic};
 use crate::syntax::ast::{AddressKind, Statement};
-use crate::syntax::gcodes::GCode;
+use crate::syntax::gcodes::{known, GCode};
 
 /// Whether a unit function programs inch (G70, G700) rather than metric (G71, G710).
 fn is_inch(code: GCode) -> bool {
-    matches!(code.name().as_ref(), "G70" | "G700")
+    matches!(code, known::G70 | known::G700)
 }
 
 impl Engine<'_> {
@@ -66,7 +66,7 @@ impl Engine<'_> {
     ) {
         if let Some((code, span)) = unit_word {
             let compensating = self.state.groups[7]
-                .is_some_and(|active| matches!(active.name().as_ref(), "G41" | "G42"));
+                .is_some_and(|active| matches!(active, known::G41 | known::G42));
             let switched = units_before.is_some_and(|before| is_inch(before) != is_inch(code));
             if compensating && switched {
                 diagnostics.push(Diagnostic::new(

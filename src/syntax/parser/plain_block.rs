@@ -66,27 +66,31 @@ impl Parser<'_> {
             };
             let has_sign = index != value_start;
             let number_start = index;
-            let mut digit_count = 0;
-            let mut has_point = false;
             // The digits are also accumulated here, so a short number needs no second pass; wrapping
-            // arithmetic is harmless because longer numbers take `parse_number` below.
+            // arithmetic is harmless because longer numbers take `parse_number` below. The digits
+            // before and after the point are read by two loops, so that a digit is not asked whether
+            // a point came before it.
             let mut mantissa: u64 = 0;
-            let mut decimals = 0;
-            while index < length {
-                match bytes[index] {
-                    byte @ b'0'..=b'9' => {
-                        digit_count += 1;
-                        mantissa = mantissa
-                            .wrapping_mul(10)
-                            .wrapping_add(u64::from(byte - b'0'));
-                        if has_point {
-                            decimals += 1;
-                        }
-                    }
-                    b'.' if !has_point => has_point = true,
-                    _ => break,
-                }
+            while index < length && bytes[index].is_ascii_digit() {
+                mantissa = mantissa
+                    .wrapping_mul(10)
+                    .wrapping_add(u64::from(bytes[index] - b'0'));
                 index += 1;
+            }
+            let mut digit_count = index - number_start;
+            let has_point = index < length && bytes[index] == b'.';
+            let mut decimals = 0;
+            if has_point {
+                index += 1;
+                let fraction_start = index;
+                while index < length && bytes[index].is_ascii_digit() {
+                    mantissa = mantissa
+                        .wrapping_mul(10)
+                        .wrapping_add(u64::from(bytes[index] - b'0'));
+                    index += 1;
+                }
+                decimals = index - fraction_start;
+                digit_count += decimals;
             }
             if digit_count == 0 {
                 return false;
