@@ -184,13 +184,16 @@ async fn next_body<R: AsyncRead + Unpin>(
     };
     let mut body = vec![0; length];
     input.read_exact(&mut body).await.ok()?;
+    let mut checked = None;
     if body.len() >= LARGE_MESSAGE_BYTES {
         // A didOpen of megabytes is read once, into typed parameters, off the async threads; what
-        // goes on to the framework is then a small message written here.
+        // goes on to the framework is then a small message written here. Any other large message
+        // (a whole text in a didChange) is checked there too.
         let texts = Arc::clone(open_texts);
-        let (taken_apart, original) = tokio::task::spawn_blocking(move || {
+        let (taken_apart, check, original) = tokio::task::spawn_blocking(move || {
             let taken_apart = take_text_out(&body, &texts);
-            (taken_apart, body)
+            let check = taken_apart.is_none().then(|| check_body(&body));
+            (taken_apart, check, body)
         })
         .await
         .ok()?;
@@ -198,8 +201,9 @@ async fn next_body<R: AsyncRead + Unpin>(
             return Some(Some(forwarded));
         }
         body = original;
+        checked = check;
     }
-    match check_body(&body) {
+    match checked.unwrap_or_else(|| check_body(&body)) {
         Ok(MessageKind::Initialize) => {
             // The framework would run an `initialize` that arrives before the first is answered
             // as a second initialization: once one the server accepts went through, no other does.
