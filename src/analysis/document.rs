@@ -408,10 +408,7 @@ impl DocumentAnalysis {
         moved: MovedLines,
         interrupted: &dyn Fn() -> bool,
     ) -> bool {
-        let MovedLines {
-            from: old_region_end,
-            by: delta,
-        } = moved;
+        let (old_region_end, delta) = (moved.from, moved.by);
         let mut position_reads = std::mem::take(&mut self.position_reads);
         let pass = self.run_pass(
             source,
@@ -457,10 +454,7 @@ impl DocumentAnalysis {
                 pass.diagnostics,
                 &pass.kept,
                 converged_at,
-                MovedLines {
-                    from: old_region_end,
-                    by: delta,
-                },
+                moved,
             ),
         }
         match converged_at {

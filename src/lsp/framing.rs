@@ -91,12 +91,17 @@ impl<R: AsyncRead + Unpin> Input<R> {
             .map_or(rest.len(), |index| index + 1)
             .min(limit);
         line.extend_from_slice(&rest[..length]);
-        self.position += length;
+        self.consume_put_back(length);
+        length
+    }
+
+    /// Marks `count` bytes of what was put back as read; all of it read, the buffer goes.
+    fn consume_put_back(&mut self, count: usize) {
+        self.position += count;
         if self.position == self.put_back.len() {
             self.put_back = Vec::new();
             self.position = 0;
         }
-        length
     }
 
     /// Reads up to and including the next `\n`, at most `limit` bytes; 0 at the end of the input.
@@ -115,11 +120,7 @@ impl<R: AsyncRead + Unpin> Input<R> {
         let rest = &self.put_back[self.position..];
         let from_put_back = rest.len().min(body.len());
         body[..from_put_back].copy_from_slice(&rest[..from_put_back]);
-        self.position += from_put_back;
-        if self.position == self.put_back.len() {
-            self.put_back = Vec::new();
-            self.position = 0;
-        }
+        self.consume_put_back(from_put_back);
         self.reader.read_exact(&mut body[from_put_back..]).await?;
         Ok(())
     }

@@ -45,6 +45,20 @@ enum Frame {
     End,
 }
 
+impl Frame {
+    /// The bytes of a message, piece by piece (none for the end).
+    fn pieces(&self) -> Vec<&[u8]> {
+        match self {
+            Frame::Message(bytes) => vec![bytes.as_slice()],
+            Frame::Parts { head, body, tail } => std::iter::once(&head[..])
+                .chain(body.pieces())
+                .chain(std::iter::once(&tail[..]))
+                .collect(),
+            Frame::End => Vec::new(),
+        }
+    }
+}
+
 #[derive(Serialize)]
 struct Notification<'a, P> {
     jsonrpc: &'static str,
@@ -224,23 +238,16 @@ async fn write_to_stream<O: AsyncWrite + Unpin>(
     mut receiver: mpsc::UnboundedReceiver<Frame>,
 ) {
     while let Some(frame) = receiver.recv().await {
-        let written = match &frame {
-            Frame::End => break,
-            Frame::Message(bytes) => output.write_all(bytes).await,
-            Frame::Parts { head, body, tail } => {
-                let mut result = Ok(());
-                let parts = std::iter::once(&head[..])
-                    .chain(body.pieces())
-                    .chain(std::iter::once(&tail[..]));
-                for part in parts {
-                    result = output.write_all(part).await;
-                    if result.is_err() {
-                        break;
-                    }
-                }
-                result
+        if matches!(frame, Frame::End) {
+            break;
+        }
+        let mut written = Ok(());
+        for piece in frame.pieces() {
+            written = output.write_all(piece).await;
+            if written.is_err() {
+                break;
             }
-        };
+        }
         if written.is_err() || (receiver.is_empty() && output.flush().await.is_err()) {
             return;
         }
@@ -252,17 +259,10 @@ async fn write_to_stream<O: AsyncWrite + Unpin>(
 /// client has gone; what is still queued is dropped with the channel).
 fn write_blocking(mut output: Box<dyn Write + Send>, mut receiver: mpsc::UnboundedReceiver<Frame>) {
     while let Some(frame) = receiver.blocking_recv() {
-        let written = match &frame {
-            Frame::End => break,
-            Frame::Message(bytes) => write_all_parts(&mut *output, &[bytes]),
-            Frame::Parts { head, body, tail } => {
-                let parts: Vec<&[u8]> = std::iter::once(&head[..])
-                    .chain(body.pieces())
-                    .chain(std::iter::once(&tail[..]))
-                    .collect();
-                write_all_parts(&mut *output, &parts)
-            }
-        };
+        if matches!(frame, Frame::End) {
+            break;
+        }
+        let written = write_all_parts(&mut *output, &frame.pieces());
         if written.is_err() || output.flush().is_err() {
             return;
         }

@@ -80,12 +80,11 @@ impl Settings {
                 // Clients send their whole section; keys of other versions are not an error.
                 "maxDiagnostics" => match value {
                     Value::Null => self.max_diagnostics = None,
-                    Value::Number(number) if number.as_u64() == Some(0) => {
-                        self.max_diagnostics = None
-                    }
+                    // 0 means no limit, as null does.
                     Value::Number(number) if number.as_u64().is_some() => {
                         self.max_diagnostics = number
                             .as_u64()
+                            .filter(|&limit| limit > 0)
                             .map(|limit| usize::try_from(limit).unwrap_or(usize::MAX));
                     }
                     other => problems.push(format!(
