@@ -11,7 +11,9 @@
 //!
 //! Run with `cargo bench --bench lsp_latency`. `BENCH_LINES` (default 1,000,000), `BENCH_EDITS` and
 //! `BENCH_HOVERS` (default 200 each) and `BENCH_BUDGET_SECS` (default 240, per measurement: a slow
-//! server is measured on fewer samples, and the count is printed) change the run.
+//! server is measured on fewer samples, and the count is printed) change the run. `BENCH_STYLES`
+//! (default `cam3d,inc`) and `BENCH_SETUPS` (default 2: both setups; 1: every finding published
+//! only) narrow it.
 
 use serde_json::{json, Value};
 use std::io::{BufRead, BufReader, Read, Write};
@@ -25,8 +27,9 @@ mod generated;
 
 const TIMEOUT: Duration = Duration::from_secs(600);
 
-/// A message from the server with the moment its last byte arrived.
+/// A message from the server with the moments its first and its last byte arrived.
 struct Arrival {
+    first_byte_at: Instant,
     at: Instant,
     bytes: usize,
     message: Value,
@@ -62,10 +65,18 @@ impl Server {
         let (sender, arrivals) = mpsc::channel();
         thread::spawn(move || {
             let mut reader = BufReader::with_capacity(1 << 20, stdout);
+            // One body buffer for every message: a fresh multi-megabyte buffer per message would
+            // add the client's own page faults (a few milliseconds) to every figure.
+            let mut buffer = Vec::new();
             loop {
                 let mut length = 0;
+                let mut first_byte_at = None;
                 loop {
                     let mut header = String::new();
+                    if reader.fill_buf().map_or(true, |bytes| bytes.is_empty()) {
+                        return;
+                    }
+                    first_byte_at.get_or_insert_with(Instant::now);
                     if reader.read_line(&mut header).unwrap_or(0) == 0 {
                         return;
                     }
@@ -77,14 +88,18 @@ impl Server {
                         length = value.trim().parse().unwrap_or(0);
                     }
                 }
-                let mut body = vec![0; length];
-                if reader.read_exact(&mut body).is_err() {
+                if buffer.len() < length {
+                    buffer.resize(length, 0);
+                }
+                let body = &mut buffer[..length];
+                if reader.read_exact(body).is_err() {
                     return;
                 }
                 let at = Instant::now();
-                let message = serde_json::from_slice(&body).unwrap_or(Value::Null);
+                let message = serde_json::from_slice(body).unwrap_or(Value::Null);
                 if sender
                     .send(Arrival {
+                        first_byte_at: first_byte_at.unwrap_or(at),
                         at,
                         bytes: length,
                         message,
@@ -325,6 +340,7 @@ fn run(style: &str, line_count: usize, setup: &Setup) {
     let mut random = Random(0x5EED ^ line_count as u64);
     let mut version = 1;
     let mut edits = Vec::new();
+    let mut edit_first_bytes = Vec::new();
     let edit_started = Instant::now();
     while edits.len() < env_number("BENCH_EDITS", 200) && edit_started.elapsed() < budget {
         let line_idx = random.below(lines.len());
@@ -339,6 +355,7 @@ fn run(style: &str, line_count: usize, setup: &Setup) {
         let sent = server.send(&encoded);
         let arrival = server.diagnostics_of(version);
         edits.push(arrival.at - sent);
+        edit_first_bytes.push(arrival.first_byte_at - sent);
         lines[line_idx].replace_range(start..end, &new_text);
     }
     let kind = if style == "cam3d" {
@@ -347,6 +364,10 @@ fn run(style: &str, line_count: usize, setup: &Setup) {
         "changed coordinate digit"
     };
     summary(&format!("edit ({kind}) to publishDiagnostics"), &mut edits);
+    summary(
+        "  of which: edit to the first byte of that publishDiagnostics",
+        &mut edit_first_bytes,
+    );
 
     let mut hovers = Vec::new();
     let hover_started = Instant::now();
@@ -470,8 +491,10 @@ fn main() {
             options: json!({"maxDiagnostics": 1000}),
         },
     ];
-    for setup in &setups {
-        for style in ["cam3d", "inc"] {
+    let styles = std::env::var("BENCH_STYLES").unwrap_or_else(|_| "cam3d,inc".to_string());
+    let setup_count = env_number("BENCH_SETUPS", setups.len()).min(setups.len());
+    for setup in &setups[..setup_count] {
+        for style in styles.split(',') {
             run(style, line_count, setup);
         }
     }

@@ -83,3 +83,77 @@ async fn exit_without_shutdown_gives_exit_code_1() {
     let code = client.wait_for_exit().await;
     assert_eq!(code, Some(1));
 }
+
+/// A program with a malformed `=AC` on every third line: thousands of diagnostics, so that their
+/// JSON is large enough to leave the binary in pages of its own (handed to the pipe, not copied).
+fn program_with_many_findings(lines: usize) -> String {
+    let mut text = String::from("G17 G90 G71\n");
+    for index in 1..lines {
+        if index % 3 == 0 {
+            text.push_str(&format!("N{index} G1 X=AC{index} Y1\n"));
+        } else {
+            text.push_str(&format!("N{index} G1 X{index} Y2\n"));
+        }
+    }
+    text.push_str("M30\n");
+    text
+}
+
+/// The edits of the session: a line inserted at the top (every later diagnostic moves), a finding
+/// added and one mended in the middle, a line removed.
+fn edits() -> Vec<Value> {
+    let range = |line: u32, start: u32, end_line: u32, end: u32| json!({"start": {"line": line, "character": start}, "end": {"line": end_line, "character": end}});
+    vec![
+        json!([{"range": range(1, 0, 1, 0), "text": "; inserted\n"}]),
+        json!([{"range": range(2001, 0, 2001, 0), "text": "N5 G1 X=AC5\n"}]),
+        json!([{"range": range(3001, 0, 3002, 0), "text": ""}]),
+        json!([{"range": range(10, 0, 10, 0), "text": " "}]),
+        json!([{"range": range(4000, 0, 4000, 0), "text": "N9 X=IC\n"}]),
+    ]
+}
+
+/// Every publication over the binary's stdout equals the in-process server's for the same version,
+/// through edits that move, add and remove diagnostics, and after a burst of edits sent at once.
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn large_publications_over_stdout_equal_the_in_process_servers() {
+    let text = program_with_many_findings(6000);
+    let uri = "file:///large_findings.mpf";
+    let mut sessions = Vec::new();
+    for mut client in [TestClient::in_process(), TestClient::spawn_binary(&[])] {
+        client.initialize(json!({}), Value::Null).await;
+        client.open(uri, 1, &text).await;
+        let mut published = vec![client.diagnostics(uri, 1).await];
+        for (index, change) in edits().into_iter().enumerate() {
+            let version = 2 + index as i64;
+            client.change(uri, version, change).await;
+            published.push(client.diagnostics(uri, version).await);
+        }
+        // A burst: only the last version is sure to be published.
+        let first = 2 + edits().len() as i64;
+        for (index, change) in edits().into_iter().enumerate() {
+            client.change(uri, first + index as i64, change).await;
+        }
+        published.push(
+            client
+                .diagnostics(uri, first + edits().len() as i64 - 1)
+                .await,
+        );
+        client.shutdown().await;
+        sessions.push(published);
+    }
+    let (in_process, binary) = (&sessions[0], &sessions[1]);
+    assert!(
+        in_process[0].len() >= 1999,
+        "every malformed =AC is found: {}",
+        in_process[0].len()
+    );
+    assert_eq!(in_process.len(), binary.len());
+    for (version, (expected, got)) in in_process.iter().zip(binary).enumerate() {
+        assert_eq!(expected.len(), got.len(), "publication {version}");
+        assert!(expected == got, "publication {version} differs");
+    }
+    assert_ne!(
+        in_process[0], in_process[1],
+        "the first edit moved the diagnostics"
+    );
+}

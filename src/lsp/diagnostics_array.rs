@@ -10,6 +10,8 @@ use crate::diagnostics::LineDiagnostic;
 use crate::lsp::convert::{
     ascii_range, write_diagnostic_json, DIAGNOSTIC_JSON_END_LINE, DIAGNOSTIC_JSON_START,
 };
+use crate::lsp::frozen_bytes::FrozenBytes;
+use crate::lsp::stdio::Piece;
 use std::io::Write;
 use std::sync::Arc;
 
@@ -23,8 +25,9 @@ const PARALLEL_MIN_DIAGNOSTICS: usize = 8 * CHUNK;
 /// A JSON array in shared pieces: runs of its elements' JSON, written with brackets and commas.
 #[derive(Clone, Default)]
 pub struct JsonArray {
-    /// Each a non-empty run of elements separated by commas.
-    runs: Vec<Arc<Vec<u8>>>,
+    /// Each a comma and a non-empty run of elements separated by commas. The first run goes out
+    /// without its comma: every run is then one piece, and the large ones leave in their own pages.
+    runs: Vec<Arc<FrozenBytes>>,
 }
 
 impl JsonArray {
@@ -36,25 +39,26 @@ impl JsonArray {
     /// The length of the JSON text.
     pub fn len(&self) -> usize {
         let runs: usize = self.runs.iter().map(|run| run.len()).sum();
-        2 + runs + self.runs.len().saturating_sub(1)
+        2 + runs - usize::from(!self.runs.is_empty())
     }
 
     /// The JSON text, piece by piece.
-    pub fn pieces(&self) -> impl Iterator<Item = &[u8]> {
-        let separated = self.runs.iter().enumerate().flat_map(|(index, run)| {
-            let separator: &[u8] = if index == 0 { b"" } else { b"," };
-            [separator, run.as_slice()]
+    pub fn pieces(&self) -> impl Iterator<Item = Piece<'_>> {
+        let runs = self.runs.iter().enumerate().map(|(index, run)| Piece {
+            bytes: &run[usize::from(index == 0)..],
+            own_pages: run.has_own_pages(),
         });
-        std::iter::once(&b"["[..])
-            .chain(separated)
-            .chain(std::iter::once(&b"]"[..]))
-            .filter(|piece| !piece.is_empty())
+        std::iter::once(Piece::copied(b"["))
+            .chain(runs)
+            .chain(std::iter::once(Piece::copied(b"]")))
     }
 
     /// The whole text in one buffer.
     #[cfg(test)]
     pub fn to_vec(&self) -> Vec<u8> {
-        self.pieces().flatten().copied().collect()
+        self.pieces()
+            .flat_map(|piece| piece.bytes.iter().copied())
+            .collect()
     }
 
     /// This array with the elements of the array `json` (`[...]`) added at its end.
@@ -65,16 +69,19 @@ impl JsonArray {
             .unwrap_or_default();
         let mut joined = self.clone();
         if !inner.is_empty() {
-            joined.runs.push(Arc::new(inner.to_vec()));
+            let mut run = Vec::with_capacity(1 + inner.len());
+            run.push(b',');
+            run.extend_from_slice(inner);
+            joined.runs.push(Arc::new(FrozenBytes::new(run)));
         }
         joined
     }
 }
 
-/// Diagnostics with their JSON objects, separated by commas, without brackets.
+/// Diagnostics with their JSON objects, each after a comma, without brackets.
 struct Chunk {
     diagnostics: Vec<LineDiagnostic>,
-    json: Arc<Vec<u8>>,
+    json: Arc<FrozenBytes>,
     /// Where each diagnostic's object starts in `json`.
     starts: Vec<usize>,
 }
@@ -94,16 +101,14 @@ impl ChunkWriter {
     }
 
     fn begin_object(&mut self) {
-        if !self.starts.is_empty() {
-            self.json.push(b',');
-        }
+        self.json.push(b',');
         self.starts.push(self.json.len());
     }
 
     fn finish(self, diagnostics: &[LineDiagnostic]) -> Arc<Chunk> {
         Arc::new(Chunk {
             diagnostics: diagnostics.to_vec(),
-            json: Arc::new(self.json),
+            json: Arc::new(FrozenBytes::new(self.json)),
             starts: self.starts,
         })
     }

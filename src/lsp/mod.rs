@@ -28,6 +28,7 @@ mod documents;
 mod endpoint_preview;
 mod ext;
 mod framing;
+mod frozen_bytes;
 mod gcode_help;
 mod hover;
 mod inlay;
@@ -105,7 +106,7 @@ pub fn serve_stdio() -> u8 {
     stdio::enlarge_pipe_buffers();
     runtime.block_on(serve_on(
         tokio::io::stdin(),
-        outgoing::Sink::<tokio::io::Stdout>::Thread(stdio::raw_stdout()),
+        outgoing::Sink::<tokio::io::Stdout>::Thread(stdio::stdout_output()),
     ));
     // Analyses still running in the blocking pool are not waited for: the client has gone.
     runtime.shutdown_timeout(std::time::Duration::from_millis(100));

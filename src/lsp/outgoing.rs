@@ -5,9 +5,8 @@
 
 use crate::lsp::diagnostics_array::JsonArray;
 use crate::lsp::log;
-use crate::lsp::stdio::write_all_parts;
+use crate::lsp::stdio::{MessageOutput, Piece};
 use serde::Serialize;
-use std::io::Write;
 use std::time::Duration;
 use tokio::io::{
     AsyncBufReadExt, AsyncReadExt, AsyncWrite, AsyncWriteExt, BufReader, DuplexStream,
@@ -47,12 +46,12 @@ enum Frame {
 
 impl Frame {
     /// The bytes of a message, piece by piece (none for the end).
-    fn pieces(&self) -> Vec<&[u8]> {
+    fn pieces(&self) -> Vec<Piece<'_>> {
         match self {
-            Frame::Message(bytes) => vec![bytes.as_slice()],
-            Frame::Parts { head, body, tail } => std::iter::once(&head[..])
+            Frame::Message(bytes) => vec![Piece::copied(bytes)],
+            Frame::Parts { head, body, tail } => std::iter::once(Piece::copied(head))
                 .chain(body.pieces())
-                .chain(std::iter::once(&tail[..]))
+                .chain(std::iter::once(Piece::copied(tail)))
                 .collect(),
             Frame::End => Vec::new(),
         }
@@ -155,7 +154,7 @@ pub enum Sink<O> {
     Stream(O),
     /// A blocking writer with a thread of its own (the process's stdout, see `stdio.rs`): a full pipe
     /// then holds up that thread only, and large messages go out without a copy.
-    Thread(Box<dyn Write + Send>),
+    Thread(Box<dyn MessageOutput>),
 }
 
 enum Writer {
@@ -243,7 +242,7 @@ async fn write_to_stream<O: AsyncWrite + Unpin>(
         }
         let mut written = Ok(());
         for piece in frame.pieces() {
-            written = output.write_all(piece).await;
+            written = output.write_all(piece.bytes).await;
             if written.is_err() {
                 break;
             }
@@ -257,17 +256,15 @@ async fn write_to_stream<O: AsyncWrite + Unpin>(
 
 /// The output thread: writes each message as it comes, until the end or until the output fails (the
 /// client has gone; what is still queued is dropped with the channel).
-fn write_blocking(mut output: Box<dyn Write + Send>, mut receiver: mpsc::UnboundedReceiver<Frame>) {
+fn write_blocking(
+    mut output: Box<dyn MessageOutput>,
+    mut receiver: mpsc::UnboundedReceiver<Frame>,
+) {
     while let Some(frame) = receiver.blocking_recv() {
-        if matches!(frame, Frame::End) {
-            break;
-        }
-        let written = write_all_parts(&mut *output, &frame.pieces());
-        if written.is_err() || output.flush().is_err() {
+        if matches!(frame, Frame::End) || output.write_message(&frame.pieces()).is_err() {
             return;
         }
     }
-    let _ = output.flush();
 }
 
 /// One message as the framework wrote it, header included; `None` when the framework has stopped.
