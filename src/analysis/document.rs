@@ -185,6 +185,66 @@ pub struct DocumentAnalysis {
     /// line it did not read to the end of what it had to read. Until the next update reads them, the
     /// findings and checkpoints from there on are those of before that update.
     unread: Option<Range<usize>>,
+    /// The number of the findings as they are now, and how the last update changed them.
+    findings_history: FindingsHistory,
+}
+
+/// How one update changed the list of findings ([`DocumentAnalysis::diagnostics`]): the first `start`
+/// are as they were; the old ones from `old_end` on are the new ones from `new_end` on, each
+/// `line_delta` lines further; the old ones between were replaced by the new ones between. It lets
+/// a consumer that keeps something per finding (the server's JSON) redo only the replaced part.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct FindingsChange {
+    pub start: usize,
+    pub old_end: usize,
+    pub new_end: usize,
+    pub line_delta: isize,
+}
+
+impl FindingsChange {
+    /// The change of a list of `count` findings that did not change.
+    pub fn none(count: usize) -> FindingsChange {
+        FindingsChange {
+            start: count,
+            old_end: count,
+            new_end: count,
+            line_delta: 0,
+        }
+    }
+}
+
+/// Numbers for the states of the findings, unique across every analysis of the process: a number
+/// remembered from another analysis (one replaced after a change of configuration) never matches.
+static NEXT_FINDINGS_REVISION: std::sync::atomic::AtomicU64 = std::sync::atomic::AtomicU64::new(1);
+
+#[derive(Debug, Clone, Copy)]
+struct FindingsHistory {
+    revision: u64,
+    /// The revision before the last update, and how that update changed the findings (`None` when
+    /// it is not known).
+    previous: u64,
+    change: Option<FindingsChange>,
+}
+
+impl FindingsHistory {
+    fn new() -> FindingsHistory {
+        FindingsHistory {
+            revision: next_findings_revision(),
+            previous: 0,
+            change: None,
+        }
+    }
+}
+
+fn next_findings_revision() -> u64 {
+    NEXT_FINDINGS_REVISION.fetch_add(1, std::sync::atomic::Ordering::Relaxed)
+}
+
+/// What a reading from a checkpoint on did: whether it read all it had to (see
+/// [`DocumentAnalysis::update_interruptible`]), and how it changed `body`, when that is simple to say.
+struct Reread {
+    finished: bool,
+    body_change: Option<FindingsChange>,
 }
 
 /// What one forward pass found.
@@ -271,7 +331,33 @@ impl DocumentAnalysis {
             combined: None,
             lines_read: 0,
             unread: None,
+            findings_history: FindingsHistory::new(),
         }
+    }
+
+    /// The number of the findings as they are now; it changes with every update and is never that of
+    /// another analysis.
+    pub fn findings_revision(&self) -> u64 {
+        self.findings_history.revision
+    }
+
+    /// How the findings changed since they had the revision `earlier`, when that is known: they were
+    /// the same, or exactly one update came since and it says how it changed them.
+    pub fn findings_change_since(&self, earlier: u64) -> Option<FindingsChange> {
+        let history = &self.findings_history;
+        if earlier == history.revision {
+            return Some(FindingsChange::none(self.diagnostics().len()));
+        }
+        history.change.filter(|_| earlier == history.previous)
+    }
+
+    /// Gives the findings a new revision after a change described by `change` (`None`: not known).
+    fn note_findings_change(&mut self, change: Option<FindingsChange>) {
+        self.findings_history = FindingsHistory {
+            revision: next_findings_revision(),
+            previous: self.findings_history.revision,
+            change,
+        };
     }
 
     /// Analyses the whole document.
@@ -295,6 +381,7 @@ impl DocumentAnalysis {
     ) -> DocumentAnalysis {
         let mut analysis = DocumentAnalysis::empty(config, kind);
         analysis.recompute_in_parallel(source, helper_source);
+        analysis.note_findings_change(None);
         analysis
     }
 
@@ -324,6 +411,9 @@ impl DocumentAnalysis {
         inserted: usize,
         interrupted: &dyn Fn() -> bool,
     ) -> bool {
+        // The findings are `body` itself when there are no end-of-program findings; only then does
+        // a change of `body` say how the findings changed.
+        let body_only_before = self.combined.is_none();
         let old_count = self.line_flags.len();
         let new_count = source.line_count();
         let fits = first_line
@@ -362,17 +452,22 @@ impl DocumentAnalysis {
         let old_region_end = first_line + removed;
         // Checkpoints at or before the first changed line stay valid; those after the changed lines
         // move with their lines and are what the new pass compares with; those inside are dropped.
+        // They stay where they are in the vector: there are thousands of them in a large program,
+        // and moving them out and back in cost more than the rest of a keystroke's update.
         let keep = self
             .checkpoints
             .partition_point(|checkpoint| checkpoint.line <= first_line);
-        let mut later: Vec<Checkpoint> = self
-            .checkpoints
-            .drain(keep..)
-            .filter(|checkpoint| checkpoint.line >= old_region_end)
-            .collect();
-        for checkpoint in &mut later {
-            checkpoint.line = checkpoint.line.saturating_add_signed(delta);
-            checkpoint.structure.shift_lines(old_region_end, delta);
+        let inside_end = keep
+            + self.checkpoints[keep..]
+                .partition_point(|checkpoint| checkpoint.line < old_region_end);
+        if inside_end > keep {
+            self.checkpoints.drain(keep..inside_end);
+        }
+        if delta != 0 {
+            for checkpoint in &mut self.checkpoints[keep..] {
+                checkpoint.line = checkpoint.line.saturating_add_signed(delta);
+                checkpoint.structure.shift_lines(old_region_end, delta);
+            }
         }
         // Lines the edit inserted are read by the pass; until then they count as reading everything.
         self.position_reads.splice(
@@ -380,41 +475,50 @@ impl DocumentAnalysis {
             std::iter::repeat_n(READS_ALL, inserted),
         );
         let start = self.checkpoints[keep - 1].clone();
-        self.checkpoints.truncate(keep);
         self.lines_read = 0;
-        self.read_again_from(
+        let reread = self.read_again_from(
             source,
             start,
             first_line + inserted,
-            later,
+            keep,
             MovedLines {
                 from: old_region_end,
                 by: delta,
             },
             interrupted,
-        )
+        );
+        let body_only_after = self.tail.is_empty() && self.combined.is_none();
+        self.note_findings_change(
+            reread
+                .body_change
+                .filter(|_| body_only_before && body_only_after),
+        );
+        reread.finished
     }
 
-    /// Reads the document again from `start` (one of `self.checkpoints`, which end with it), where
-    /// `later` are the old checkpoints after the changed lines (already moved to the new numbering),
-    /// `changed_end` the first line (new numbering) the change did not touch, and the old findings at
-    /// lines from `old_region_end` on move by `delta` lines (those before it were replaced).
+    /// Reads the document again from `start` (the last of `self.checkpoints[..later_from]`), where
+    /// `self.checkpoints[later_from..]` are the old checkpoints after the changed lines (already
+    /// moved to the new numbering), `changed_end` the first line (new numbering) the change did not
+    /// touch, and the old findings at lines from `old_region_end` on move by `delta` lines (those
+    /// before it were replaced).
     fn read_again_from(
         &mut self,
         source: &dyn LineSource,
         start: Checkpoint,
         changed_end: usize,
-        mut later: Vec<Checkpoint>,
+        later_from: usize,
         moved: MovedLines,
         interrupted: &dyn Fn() -> bool,
-    ) -> bool {
+    ) -> Reread {
         let (old_region_end, delta) = (moved.from, moved.by);
         let mut position_reads = std::mem::take(&mut self.position_reads);
+        // Taken out for the pass, which reads (and may update) the later ones, and put back below.
+        let mut checkpoints = std::mem::take(&mut self.checkpoints);
         let pass = self.run_pass(
             source,
             start.clone(),
             changed_end,
-            &mut later,
+            &mut checkpoints[later_from..],
             PositionReads {
                 base: 0,
                 reads: &mut position_reads,
@@ -431,6 +535,7 @@ impl DocumentAnalysis {
         let prefix_end = self.body.partition_point(|item| item.line < start.line);
         // From an interruption on, everything stays as it was, like after a convergence.
         let converged_at = pass.converged_at.or(pass.interrupted_at);
+        let mut body_change = None;
         match converged_at {
             // The common case, an edit whose effect ends at a checkpoint: the old findings from the
             // point of convergence on stay (all of them, moved), the pass's replace those before, and
@@ -442,6 +547,12 @@ impl DocumentAnalysis {
                             || item.line.saturating_add_signed(delta) < converged_line
                     });
                 let fresh = pass.diagnostics.len();
+                body_change = Some(FindingsChange {
+                    start: prefix_end,
+                    old_end: kept_from,
+                    new_end: prefix_end + fresh,
+                    line_delta: delta,
+                });
                 self.body.splice(prefix_end..kept_from, pass.diagnostics);
                 if delta != 0 {
                     for item in &mut self.body[prefix_end + fresh..] {
@@ -465,27 +576,38 @@ impl DocumentAnalysis {
                     }
                 }
                 // An interrupted pass has a checkpoint of its own at the line it stopped at.
+                let later = &checkpoints[later_from..];
                 let index = match pass.interrupted_at {
                     Some(_) => {
                         later.partition_point(|checkpoint| checkpoint.line <= converged_line)
                     }
                     None => later.partition_point(|checkpoint| checkpoint.line < converged_line),
                 };
-                self.checkpoints.extend(pass.checkpoints);
-                self.checkpoints.extend(later.drain(index..));
+                // Usually the pass met the first later checkpoint and made none: nothing moves.
+                if index > 0 || !pass.checkpoints.is_empty() {
+                    checkpoints.splice(later_from..later_from + index, pass.checkpoints);
+                }
             }
             None => {
                 self.tail = pass.tail;
-                self.checkpoints.extend(pass.checkpoints);
+                checkpoints.truncate(later_from);
+                checkpoints.extend(pass.checkpoints);
             }
         }
+        self.checkpoints = checkpoints;
         self.lines_read += pass.lines_read;
         if let (None, Some(line)) = (pass.converged_at, pass.interrupted_at) {
             self.unread = Some(line..changed_end.max(line + 1));
-            return false;
+            return Reread {
+                finished: false,
+                body_change,
+            };
         }
         self.combine();
-        true
+        Reread {
+            finished: true,
+            body_change,
+        }
     }
 
     /// Whether the analysis describes the whole text it was last given: false after an interrupted
@@ -647,6 +769,7 @@ impl DocumentAnalysis {
         self.tail = pass.tail;
         self.lines_read = pass.lines_read;
         self.combine();
+        self.note_findings_change(None);
     }
 
     /// Reads the whole-document facts (macros, `PROC` headers) and gives the state before line 0.
@@ -748,11 +871,12 @@ impl DocumentAnalysis {
             Ok(result) => result,
             Err(_) => {
                 // The helper thread failed (a bug): the second half is read here instead.
+                let later_from = self.checkpoints.len();
                 self.read_again_from(
                     source,
                     end_of_first,
                     middle + 1,
-                    Vec::new(),
+                    later_from,
                     MovedLines {
                         from: line_count,
                         by: 0,
@@ -774,11 +898,13 @@ impl DocumentAnalysis {
         } else {
             // The second half's results are an old analysis of those lines, as after an edit of the
             // first half: read again from the true state until they agree.
+            let later_from = self.checkpoints.len();
+            self.checkpoints.extend(second.checkpoints);
             self.read_again_from(
                 source,
                 end_of_first,
                 middle + 1,
-                second.checkpoints,
+                later_from,
                 MovedLines {
                     from: middle + 1,
                     by: 0,
@@ -1199,5 +1325,104 @@ mod tests {
         analysis.update(&TextLines::new(&changed), 1, 1, 1);
         assert_eq!(analysis.diagnostics().len(), 1);
         assert_eq!(analysis.diagnostics()[0].line, 1);
+    }
+
+    /// Whether `change` turns `old` into `new`.
+    fn change_holds(
+        old: &[LineDiagnostic],
+        new: &[LineDiagnostic],
+        change: FindingsChange,
+    ) -> bool {
+        let moved = |item: &LineDiagnostic| LineDiagnostic {
+            line: item.line.saturating_add_signed(change.line_delta),
+            diagnostic: item.diagnostic.clone(),
+        };
+        change.start <= change.old_end
+            && change.start <= change.new_end
+            && change.old_end <= old.len()
+            && change.new_end <= new.len()
+            && old.len() - change.old_end == new.len() - change.new_end
+            && old[..change.start] == new[..change.start]
+            && old[change.old_end..]
+                .iter()
+                .map(moved)
+                .eq(new[change.new_end..].iter().cloned())
+    }
+
+    #[test]
+    fn the_findings_change_an_update_reports_turns_the_old_findings_into_the_new() {
+        let config = Arc::new(MachineConfig::mill());
+        let mut lines: Vec<String> = (0..3000)
+            .map(|index| match index % 5 {
+                0 => format!("N{index} G1 X=AC{index} F100"),
+                _ => format!("N{index} G1 X{index} Y=IC(1) F100"),
+            })
+            .collect();
+        let text = |lines: &[String]| lines.join("\n") + "\n";
+        let mut analysis =
+            DocumentAnalysis::new(&TextLines::new(&text(&lines)), config, ProgramKind::Main);
+        let mut random = 0x9E37_79B9_7F4A_7C15_u64;
+        let mut next = |bound: usize| {
+            random ^= random << 13;
+            random ^= random >> 7;
+            random ^= random << 17;
+            (random % bound as u64) as usize
+        };
+        let mut known = 0;
+        for step in 0..300 {
+            let old = analysis.diagnostics().to_vec();
+            let revision = analysis.findings_revision();
+            let line = next(lines.len() - 1);
+            let (removed, inserted) = match step % 4 {
+                0 => {
+                    lines[line].insert(0, ' ');
+                    (1, 1)
+                }
+                1 => {
+                    lines.insert(line, format!("N9 X=AC{step}"));
+                    (0, 1)
+                }
+                2 => {
+                    lines.remove(line);
+                    (1, 0)
+                }
+                _ => {
+                    lines[line] = format!("N{step} G1 X{step}");
+                    (1, 1)
+                }
+            };
+            let current = text(&lines);
+            analysis.update(&TextLines::new(&current), line, removed, inserted);
+            assert_eq!(
+                analysis.findings_change_since(analysis.findings_revision()),
+                Some(FindingsChange::none(analysis.diagnostics().len()))
+            );
+            if let Some(change) = analysis.findings_change_since(revision) {
+                known += 1;
+                assert!(
+                    change_holds(&old, analysis.diagnostics(), change),
+                    "step {step}: {change:?}"
+                );
+            }
+            assert_eq!(
+                analysis.findings_change_since(revision.wrapping_sub(1)),
+                None
+            );
+        }
+        assert!(
+            known > 200,
+            "most edits say how they changed the findings: {known}"
+        );
+    }
+
+    #[test]
+    fn an_update_of_a_program_with_end_of_program_findings_does_not_say_how_they_changed() {
+        let config = Arc::new(MachineConfig::mill());
+        let text = "IF R1 == 1\nN10 G1 X=AC1 F100\nN20 X2\n";
+        let mut analysis = DocumentAnalysis::new(&TextLines::new(text), config, ProgramKind::Main);
+        assert!(analysis.diagnostics().iter().any(|item| item.line == 0));
+        let revision = analysis.findings_revision();
+        analysis.update(&TextLines::new(&text.replace("X2", " X2")), 2, 1, 1);
+        assert_eq!(analysis.findings_change_since(revision), None);
     }
 }

@@ -6,6 +6,7 @@
 //! or removed lines (in an ASCII document a diagnostic's JSON depends on the diagnostic alone). The
 //! message then goes out as the list of pieces, without being copied into one buffer.
 
+use crate::analysis::document::FindingsChange;
 use crate::diagnostics::LineDiagnostic;
 use crate::lsp::convert::{
     ascii_range, write_diagnostic_json, DIAGNOSTIC_JSON_END_LINE, DIAGNOSTIC_JSON_START,
@@ -157,8 +158,14 @@ impl DiagnosticsArray {
         &self.json
     }
 
-    /// The array of `diagnostics` (of an ASCII document), reusing what `previous` wrote.
-    pub fn build(previous: Option<&DiagnosticsArray>, diagnostics: &[LineDiagnostic]) -> Self {
+    /// The array of `diagnostics` (of an ASCII document), reusing what `previous` wrote. `change`,
+    /// when known, says how `diagnostics` differ from those of `previous`: then only the findings it
+    /// says were replaced are compared, instead of all of them.
+    pub fn build(
+        previous: Option<&DiagnosticsArray>,
+        diagnostics: &[LineDiagnostic],
+        change: Option<FindingsChange>,
+    ) -> Self {
         let Some(previous) = previous.filter(|previous| !previous.chunks.is_empty()) else {
             return DiagnosticsArray::from_chunks(written_chunks(diagnostics));
         };
@@ -167,7 +174,16 @@ impl DiagnosticsArray {
             .iter()
             .map(|chunk| chunk.diagnostics.len())
             .sum();
-        let (prefix, suffix, delta) = common_ends(previous, old_count, diagnostics);
+        let change = change.filter(|change| {
+            change.start <= change.old_end.min(change.new_end)
+                && change.old_end <= old_count
+                && change.new_end <= diagnostics.len()
+                && old_count - change.old_end == diagnostics.len() - change.new_end
+        });
+        let (prefix, suffix, delta) = match change {
+            Some(change) => known_ends(previous, diagnostics, change),
+            None => common_ends(previous, old_count, diagnostics),
+        };
         let mut chunks = Vec::with_capacity(diagnostics.len() / CHUNK + 2);
         // The old chunks wholly within the common start are taken over.
         let mut taken = 0;
@@ -279,6 +295,82 @@ fn common_ends(
     (prefix, suffix, delta)
 }
 
+/// The old diagnostics of `old`'s chunks from index `start` on.
+fn old_items_from(old: &DiagnosticsArray, start: usize) -> impl Iterator<Item = &LineDiagnostic> {
+    let mut skipped = 0;
+    let first = old
+        .chunks
+        .iter()
+        .position(|chunk| {
+            let past = skipped + chunk.diagnostics.len() > start;
+            if !past {
+                skipped += chunk.diagnostics.len();
+            }
+            past
+        })
+        .unwrap_or(old.chunks.len());
+    old.chunks[first..]
+        .iter()
+        .flat_map(|chunk| chunk.diagnostics.iter())
+        .skip(start - skipped)
+}
+
+/// The old diagnostics of `old`'s chunks before index `end`, from the last one back.
+fn old_items_before(
+    old: &DiagnosticsArray,
+    old_count: usize,
+    end: usize,
+) -> impl Iterator<Item = &LineDiagnostic> {
+    let mut skipped = 0;
+    let last = old
+        .chunks
+        .iter()
+        .rposition(|chunk| {
+            let past = skipped + chunk.diagnostics.len() > old_count - end;
+            if !past {
+                skipped += chunk.diagnostics.len();
+            }
+            past
+        })
+        .map_or(0, |index| index + 1);
+    old.chunks[..last]
+        .iter()
+        .rev()
+        .flat_map(|chunk| chunk.diagnostics.iter().rev())
+        .skip(old_count - end - skipped)
+}
+
+/// Like [`common_ends`], from what `change` says: the common start and end it gives, each grown by
+/// the replaced findings that are equal all the same (an edit that wrote the same finding again).
+fn known_ends(
+    old: &DiagnosticsArray,
+    new: &[LineDiagnostic],
+    change: FindingsChange,
+) -> (usize, usize, isize) {
+    let old_count = new.len() - change.new_end + change.old_end;
+    let delta = change.line_delta;
+    let replaced_new = &new[change.start..change.new_end];
+    let grown_prefix = old_items_from(old, change.start)
+        .take(change.old_end - change.start)
+        .zip(replaced_new)
+        .take_while(|(old, new)| old == new)
+        .count();
+    let prefix = change.start + grown_prefix;
+    if prefix == change.old_end && prefix == change.new_end && delta == 0 {
+        // Nothing was replaced by anything else, and nothing moved: the whole list is common.
+        return (new.len(), 0, 0);
+    }
+    let most = (change.old_end - prefix).min(change.new_end - prefix);
+    let grown_suffix = old_items_before(old, old_count, change.old_end)
+        .zip(new[prefix..change.new_end].iter().rev())
+        .take(most)
+        .take_while(|(old, new)| {
+            old.line.checked_add_signed(delta) == Some(new.line) && old.diagnostic == new.diagnostic
+        })
+        .count();
+    (prefix, new.len() - change.new_end + grown_suffix, delta)
+}
+
 /// Writes `object` (a diagnostic's JSON) with `line` as its start and end line; false when the object
 /// is not in the expected shape (nothing is written then).
 fn write_with_line(out: &mut Vec<u8>, object: &[u8], line: usize) -> bool {
@@ -356,7 +448,7 @@ mod tests {
         for count in [100, 300, 3 * PARALLEL_MIN_DIAGNOSTICS / 2] {
             let mut random = Random(0x1234_5678 ^ count as u64);
             let mut diagnostics = findings_every_third_line(&mut random, count);
-            let mut array = DiagnosticsArray::build(None, &diagnostics);
+            let mut array = DiagnosticsArray::build(None, &diagnostics, None);
             assert_eq!(array.json().to_vec(), full(&diagnostics));
             for step in 0..300 {
                 // An edit at one line: its findings change, and the later lines may move.
@@ -382,7 +474,7 @@ mod tests {
                     70 => next = diagnostics.clone(),
                     _ => {}
                 }
-                let built = DiagnosticsArray::build(Some(&array), &next);
+                let built = DiagnosticsArray::build(Some(&array), &next, None);
                 assert_eq!(
                     String::from_utf8_lossy(&built.json().to_vec()),
                     String::from_utf8_lossy(&full(&next)),
@@ -400,10 +492,10 @@ mod tests {
     fn an_edit_writes_only_the_chunks_around_it() {
         let mut random = Random(7);
         let diagnostics = findings_every_third_line(&mut random, 10 * CHUNK);
-        let array = DiagnosticsArray::build(None, &diagnostics);
+        let array = DiagnosticsArray::build(None, &diagnostics, None);
         let mut next = diagnostics.clone();
         next[5 * CHUNK + 3] = diagnostic(&mut random, next[5 * CHUNK + 3].line);
-        let built = DiagnosticsArray::build(Some(&array), &next);
+        let built = DiagnosticsArray::build(Some(&array), &next, None);
         let shared = built
             .chunks
             .iter()
@@ -411,7 +503,7 @@ mod tests {
             .count();
         assert_eq!(shared, 9, "every chunk but the changed one is taken over");
         assert_eq!(built.json().to_vec(), full(&next));
-        let again = DiagnosticsArray::build(Some(&built), &next);
+        let again = DiagnosticsArray::build(Some(&built), &next, None);
         assert!(
             again
                 .chunks
@@ -439,7 +531,7 @@ mod tests {
         let mut random = Random(3);
         for count in [0, 1, 2 * CHUNK + 5] {
             let diagnostics = findings_every_third_line(&mut random, count);
-            let array = DiagnosticsArray::build(None, &diagnostics);
+            let array = DiagnosticsArray::build(None, &diagnostics, None);
             for extra in [&b"[]"[..], b"[{\"a\":1}]", b"[{\"a\":1},{\"b\":2}]"] {
                 let joined = array.json().join_array(extra);
                 let value: serde_json::Value = serde_json::from_slice(&joined.to_vec())
@@ -459,7 +551,7 @@ mod tests {
             .iter()
             .map(|&line| diagnostic(&mut random, line))
             .collect();
-        let array = DiagnosticsArray::build(None, &old);
+        let array = DiagnosticsArray::build(None, &old, None);
         for delta in [-7isize, 1, 3, 900_000] {
             let new: Vec<LineDiagnostic> = old
                 .iter()
@@ -469,8 +561,67 @@ mod tests {
                     moved
                 })
                 .collect();
-            let built = DiagnosticsArray::build(Some(&array), &new);
+            let built = DiagnosticsArray::build(Some(&array), &new, None);
             assert_eq!(built.json().to_vec(), full(&new), "delta {delta}");
         }
+    }
+
+    /// Arrays built from what the analysis says an edit changed equal arrays written anew, through
+    /// edits that insert, remove and change lines with and without findings.
+    #[test]
+    fn arrays_built_from_the_analysis_s_changes_equal_arrays_written_anew() {
+        use crate::analysis::document::{DocumentAnalysis, TextLines};
+        use crate::analysis::ProgramKind;
+        use crate::config::MachineConfig;
+        let mut lines: Vec<String> = (0..4000)
+            .map(|index| match index % 4 {
+                0 => format!("N{index} G1 X=AC{index} F100"),
+                _ => format!("N{index} G1 X{index} F100"),
+            })
+            .collect();
+        let text = |lines: &[String]| lines.join("\n") + "\n";
+        let config = std::sync::Arc::new(MachineConfig::mill());
+        let mut analysis =
+            DocumentAnalysis::new(&TextLines::new(&text(&lines)), config, ProgramKind::Main);
+        let mut array = DiagnosticsArray::build(None, analysis.diagnostics(), None);
+        let mut revision = analysis.findings_revision();
+        let mut random = Random(0xC0FF_EE11);
+        let mut known = 0;
+        for step in 0..200 {
+            let line = random.below(lines.len() - 1);
+            let (removed, inserted) = match step % 5 {
+                0 => {
+                    lines[line].insert(0, ' ');
+                    (1, 1)
+                }
+                1 => {
+                    lines.insert(line, format!("N7 X=AC{step}"));
+                    (0, 1)
+                }
+                2 => {
+                    lines.remove(line);
+                    (1, 0)
+                }
+                3 => {
+                    lines[line] = format!("N{step} X{step}");
+                    (1, 1)
+                }
+                _ => {
+                    lines.insert(line, String::new());
+                    (0, 1)
+                }
+            };
+            analysis.update(&TextLines::new(&text(&lines)), line, removed, inserted);
+            let change = analysis.findings_change_since(revision);
+            known += usize::from(change.is_some());
+            array = DiagnosticsArray::build(Some(&array), analysis.diagnostics(), change);
+            revision = analysis.findings_revision();
+            assert!(array.is_of(analysis.diagnostics()), "step {step}");
+            assert!(
+                array.json().to_vec() == full(analysis.diagnostics()),
+                "step {step}: {change:?}"
+            );
+        }
+        assert!(known > 150, "{known} of 200 edits said what they changed");
     }
 }

@@ -94,6 +94,9 @@ pub struct TextSnapshot {
 struct Published {
     encoding: PositionEncoding,
     array: DiagnosticsArray,
+    /// The revision of the analysis's findings the array was written from, when it holds all of
+    /// them (not a selection by `maxDiagnostics`): the analysis then says what changed since.
+    findings_revision: Option<u64>,
 }
 
 /// What a worker needs besides the document.
@@ -141,7 +144,8 @@ impl OpenDocument {
         limit: Option<usize>,
     ) -> JsonArray {
         let (diagnostics, left_out) = within_limit(analysed.analysis.diagnostics(), limit);
-        let array = self.array_of(analysed, &diagnostics, encoding);
+        let all_of_them = matches!(diagnostics, std::borrow::Cow::Borrowed(_));
+        let array = self.array_of(analysed, &diagnostics, all_of_them, encoding);
         match limit {
             Some(limit) if left_out > 0 => array.join_array(&note_json(left_out, limit)),
             _ => array,
@@ -152,6 +156,7 @@ impl OpenDocument {
         &self,
         analysed: &Analysed,
         diagnostics: &[LineDiagnostic],
+        all_of_them: bool,
         encoding: PositionEncoding,
     ) -> JsonArray {
         let all_ascii = analysed.rope.len_bytes() == analysed.rope.len_chars();
@@ -166,14 +171,21 @@ impl OpenDocument {
                 encoding,
             ));
         }
-        // Unchanged diagnostics are found while building: every chunk is then taken over.
-        let previous = published
-            .as_ref()
-            .filter(|last| last.encoding == encoding)
-            .map(|last| &last.array);
-        let array = DiagnosticsArray::build(previous, diagnostics);
+        // Unchanged diagnostics are found while building: every chunk is then taken over. The
+        // analysis says which of its findings an edit replaced; only those are compared then.
+        let previous = published.as_ref().filter(|last| last.encoding == encoding);
+        let analysis = &analysed.analysis;
+        let change = previous
+            .and_then(|last| last.findings_revision)
+            .filter(|_| all_of_them)
+            .and_then(|revision| analysis.findings_change_since(revision));
+        let array = DiagnosticsArray::build(previous.map(|last| &last.array), diagnostics, change);
         let json = array.json().clone();
-        *published = Some(Published { encoding, array });
+        *published = Some(Published {
+            encoding,
+            array,
+            findings_revision: all_of_them.then(|| analysis.findings_revision()),
+        });
         json
     }
 
