@@ -194,6 +194,12 @@ async fn next_body<R: AsyncRead + Unpin>(
         let (taken_apart, check, original) = tokio::task::spawn_blocking(move || {
             let taken_apart = take_text_out(&body, &texts);
             let check = taken_apart.is_none().then(|| check_body(&body));
+            if taken_apart.is_some() {
+                // Giving back the pages of tens of megabytes takes milliseconds: not while the
+                // editor waits for the first diagnostics.
+                tokio::task::spawn_blocking(move || drop(body));
+                return (taken_apart, check, Vec::new());
+            }
             (taken_apart, check, body)
         })
         .await
