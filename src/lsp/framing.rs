@@ -5,6 +5,7 @@
 //! itself: after a wrong or missing length the guard finds the next header and reads on from there.
 
 use crate::lsp::log;
+use crate::lsp::memory;
 use crate::lsp::open_texts::{take_text_out, OpenTexts, LARGE_MESSAGE_BYTES};
 use crate::lsp::outgoing::OutgoingSender;
 use serde::de::IgnoredAny;
@@ -116,13 +117,21 @@ impl<R: AsyncRead + Unpin> Input<R> {
         Ok(read)
     }
 
-    async fn read_exact(&mut self, body: &mut [u8]) -> std::io::Result<()> {
+    /// The next `length` bytes, read straight into a buffer of their own (see
+    /// [`memory::large_buffer`]).
+    async fn read_body(&mut self, length: usize) -> std::io::Result<Vec<u8>> {
+        let mut body = memory::large_buffer(length);
         let rest = &self.put_back[self.position..];
-        let from_put_back = rest.len().min(body.len());
-        body[..from_put_back].copy_from_slice(&rest[..from_put_back]);
+        let from_put_back = rest.len().min(length);
+        body.extend_from_slice(&rest[..from_put_back]);
         self.consume_put_back(from_put_back);
-        self.reader.read_exact(&mut body[from_put_back..]).await?;
-        Ok(())
+        while body.len() < length {
+            let wanted = (length - body.len()) as u64;
+            if (&mut self.reader).take(wanted).read_buf(&mut body).await? == 0 {
+                return Err(std::io::ErrorKind::UnexpectedEof.into());
+            }
+        }
+        Ok(body)
     }
 }
 
@@ -183,8 +192,7 @@ async fn next_body<R: AsyncRead + Unpin>(
             return Some(None);
         }
     };
-    let mut body = vec![0; length];
-    input.read_exact(&mut body).await.ok()?;
+    let mut body = input.read_body(length).await.ok()?;
     let mut checked = None;
     if body.len() >= LARGE_MESSAGE_BYTES {
         // A didOpen of megabytes is read once, into typed parameters, off the async threads; what
