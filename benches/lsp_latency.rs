@@ -224,6 +224,12 @@ impl Server {
         })
     }
 
+    fn minor_faults(&self) -> Option<u64> {
+        let stat = std::fs::read_to_string(format!("/proc/{}/stat", self.child.id())).ok()?;
+        let rest = stat.rsplit_once(')')?.1;
+        rest.split_whitespace().nth(7)?.parse().ok()
+    }
+
     fn resident_kib(&self) -> Option<u64> {
         let status = std::fs::read_to_string(format!("/proc/{}/status", self.child.id())).ok()?;
         status
@@ -380,7 +386,13 @@ fn run(style: &str, line_count: usize, setup: &Setup) {
     server.keep_next_large_text();
     let started = server.send(&open);
     drop(open);
+    let faults_before = server.minor_faults();
     let first = server.diagnostics_of(1);
+    eprintln!(
+        "FAULTS open {:?} {:?}",
+        faults_before,
+        server.minor_faults()
+    );
     let diagnostic_count = first.diagnostic_count;
     println!(
         "  didOpen to first publishDiagnostics: {} ({diagnostic_count} diagnostics, a {:.1} MB message)",

@@ -9,12 +9,15 @@
 use crate::analysis::document::FindingsChange;
 use crate::diagnostics::LineDiagnostic;
 use crate::lsp::convert::{
-    ascii_range, write_diagnostic_json, DIAGNOSTIC_JSON_END_LINE, DIAGNOSTIC_JSON_START,
+    ascii_range, span_to_range, write_diagnostic_json, PositionEncoding, DIAGNOSTIC_JSON_END_LINE,
+    DIAGNOSTIC_JSON_START,
 };
 use crate::lsp::frozen_bytes::FrozenBytes;
 use crate::lsp::stdio::Piece;
+use std::borrow::Cow;
 use std::io::Write;
 use std::sync::Arc;
+use tower_lsp_server::ls_types::Range;
 
 /// Diagnostics per chunk: an edit writes one or two chunks (about 60 KB each) anew.
 const CHUNK: usize = 256;
@@ -32,11 +35,6 @@ pub struct JsonArray {
 }
 
 impl JsonArray {
-    /// The array `json` (`[...]`, as serde_json writes it).
-    pub fn from_json(json: &[u8]) -> JsonArray {
-        JsonArray::default().join_array(json)
-    }
-
     /// The length of the JSON text.
     pub fn len(&self) -> usize {
         let runs: usize = self.runs.iter().map(|run| run.len()).sum();
@@ -79,6 +77,36 @@ impl JsonArray {
     }
 }
 
+/// How the columns of a diagnostic's range are found.
+pub enum Columns<'a> {
+    /// The byte offsets are the columns: an ASCII document, or positions counted in UTF-8. The JSON
+    /// of a diagnostic then depends on the diagnostic alone.
+    Bytes,
+    /// The columns are counted in the text of the diagnostic's line (UTF-16 positions in a document
+    /// that is not ASCII): equal diagnostics on lines of different texts have different JSON.
+    InLine {
+        line_text: &'a dyn Fn(usize) -> Cow<'a, str>,
+        encoding: PositionEncoding,
+    },
+}
+
+impl Columns<'_> {
+    fn range(&self, item: &LineDiagnostic) -> Range {
+        match self {
+            Columns::Bytes => ascii_range(item),
+            Columns::InLine {
+                line_text,
+                encoding,
+            } => span_to_range(
+                item.line,
+                &line_text(item.line),
+                item.diagnostic.span,
+                *encoding,
+            ),
+        }
+    }
+}
+
 /// Diagnostics with their JSON objects, each after a comma, without brackets.
 struct Chunk {
     diagnostics: Vec<LineDiagnostic>,
@@ -116,22 +144,23 @@ impl ChunkWriter {
 }
 
 impl Chunk {
-    fn written(diagnostics: &[LineDiagnostic]) -> Arc<Chunk> {
+    fn written(diagnostics: &[LineDiagnostic], columns: &Columns<'_>) -> Arc<Chunk> {
         let mut writer = ChunkWriter::with_capacity(diagnostics.len());
         for item in diagnostics {
             writer.begin_object();
-            write_diagnostic_json(&mut writer.json, ascii_range(item), item);
+            write_diagnostic_json(&mut writer.json, columns.range(item), item);
         }
         writer.finish(diagnostics)
     }
 
-    /// `old` with its diagnostics moved to other lines: `new`, the same diagnostics at their lines.
-    fn moved(old: &Chunk, new: &[LineDiagnostic]) -> Arc<Chunk> {
+    /// `old` with its diagnostics moved to other lines: `new`, the same diagnostics at their lines
+    /// (whose texts are those of their old lines, so the columns stay).
+    fn moved(old: &Chunk, new: &[LineDiagnostic], columns: &Columns<'_>) -> Arc<Chunk> {
         let mut writer = ChunkWriter::with_capacity(new.len());
         for (index, item) in new.iter().enumerate() {
             writer.begin_object();
             if !write_with_line(&mut writer.json, old.object(index), item.line) {
-                write_diagnostic_json(&mut writer.json, ascii_range(item), item);
+                write_diagnostic_json(&mut writer.json, columns.range(item), item);
             }
         }
         writer.finish(new)
@@ -146,10 +175,13 @@ impl Chunk {
     }
 }
 
-/// A written array of the diagnostics of an ASCII document.
+/// A written array of diagnostics.
 pub struct DiagnosticsArray {
     chunks: Vec<Arc<Chunk>>,
     json: JsonArray,
+    /// Whether every chunk's JSON depends on its diagnostics alone (all were written with
+    /// [`Columns::Bytes`]): only then may a diagnostic found equal to an old one take over its JSON.
+    by_diagnostic: bool,
 }
 
 impl DiagnosticsArray {
@@ -158,17 +190,24 @@ impl DiagnosticsArray {
         &self.json
     }
 
-    /// The array of `diagnostics` (of an ASCII document), reusing what `previous` wrote. `change`,
-    /// when known, says how `diagnostics` differ from those of `previous`: then only the findings it
-    /// says were replaced are compared, instead of all of them.
+    /// The array of `diagnostics`, reusing what `previous` wrote. `change`, when known, says how
+    /// `diagnostics` differ from those of `previous`: then only the findings it says were replaced
+    /// are compared, instead of all of them. Where the columns depend on the lines' texts, nothing
+    /// is compared: only what `change` says is unchanged is taken over (those findings are on lines
+    /// the edit did not touch), and without it everything is written anew.
     pub fn build(
         previous: Option<&DiagnosticsArray>,
         diagnostics: &[LineDiagnostic],
         change: Option<FindingsChange>,
+        columns: &Columns<'_>,
     ) -> Self {
+        let by_diagnostic = matches!(columns, Columns::Bytes);
+        let written_anew =
+            || DiagnosticsArray::from_chunks(written_chunks(diagnostics, columns), by_diagnostic);
         let Some(previous) = previous.filter(|previous| !previous.chunks.is_empty()) else {
-            return DiagnosticsArray::from_chunks(written_chunks(diagnostics));
+            return written_anew();
         };
+        let comparable = by_diagnostic && previous.by_diagnostic;
         let old_count: usize = previous
             .chunks
             .iter()
@@ -180,9 +219,11 @@ impl DiagnosticsArray {
                 && change.new_end <= diagnostics.len()
                 && old_count - change.old_end == diagnostics.len() - change.new_end
         });
-        let (prefix, suffix, delta) = match change {
-            Some(change) => known_ends(previous, diagnostics, change),
-            None => common_ends(previous, old_count, diagnostics),
+        let (prefix, suffix, delta) = match (change, comparable) {
+            (Some(change), true) => known_ends(previous, diagnostics, change),
+            (Some(change), false) => exact_ends(diagnostics.len(), change),
+            (None, true) => common_ends(previous, old_count, diagnostics),
+            (None, false) => return written_anew(),
         };
         let mut chunks = Vec::with_capacity(diagnostics.len() / CHUNK + 2);
         // The old chunks wholly within the common start are taken over.
@@ -207,7 +248,7 @@ impl DiagnosticsArray {
             kept_at_end.push(chunk);
         }
         let middle = &diagnostics[taken..diagnostics.len() - kept];
-        chunks.extend(written_chunks(middle));
+        chunks.extend(written_chunks(middle, columns));
         let mut new_start = diagnostics.len() - kept;
         for old in kept_at_end.into_iter().rev() {
             let new = &diagnostics[new_start..new_start + old.diagnostics.len()];
@@ -215,13 +256,17 @@ impl DiagnosticsArray {
             chunks.push(if delta == 0 {
                 Arc::clone(old)
             } else {
-                Chunk::moved(old, new)
+                Chunk::moved(old, new, columns)
             });
         }
-        DiagnosticsArray::from_chunks(chunks)
+        let took_over = taken > 0 || kept > 0;
+        DiagnosticsArray::from_chunks(
+            chunks,
+            by_diagnostic && (previous.by_diagnostic || !took_over),
+        )
     }
 
-    fn from_chunks(chunks: Vec<Arc<Chunk>>) -> DiagnosticsArray {
+    fn from_chunks(chunks: Vec<Arc<Chunk>>, by_diagnostic: bool) -> DiagnosticsArray {
         let json = JsonArray {
             runs: chunks
                 .iter()
@@ -229,7 +274,11 @@ impl DiagnosticsArray {
                 .map(|chunk| Arc::clone(&chunk.json))
                 .collect(),
         };
-        DiagnosticsArray { chunks, json }
+        DiagnosticsArray {
+            chunks,
+            json,
+            by_diagnostic,
+        }
     }
 
     /// Whether the array is that of exactly `diagnostics`.
@@ -249,14 +298,20 @@ impl DiagnosticsArray {
     }
 }
 
-/// `diagnostics` written in chunks; a large array on two threads.
-fn written_chunks(diagnostics: &[LineDiagnostic]) -> Vec<Arc<Chunk>> {
-    let write = |diagnostics: &[LineDiagnostic]| -> Vec<Arc<Chunk>> {
-        diagnostics.chunks(CHUNK).map(Chunk::written).collect()
-    };
-    if diagnostics.len() < PARALLEL_MIN_DIAGNOSTICS {
-        return write(diagnostics);
+/// `diagnostics` written in chunks; a large array with byte columns on two threads.
+fn written_chunks(diagnostics: &[LineDiagnostic], columns: &Columns<'_>) -> Vec<Arc<Chunk>> {
+    if diagnostics.len() < PARALLEL_MIN_DIAGNOSTICS || !matches!(columns, Columns::Bytes) {
+        return diagnostics
+            .chunks(CHUNK)
+            .map(|chunk| Chunk::written(chunk, columns))
+            .collect();
     }
+    let write = |diagnostics: &[LineDiagnostic]| -> Vec<Arc<Chunk>> {
+        diagnostics
+            .chunks(CHUNK)
+            .map(|chunk| Chunk::written(chunk, &Columns::Bytes))
+            .collect()
+    };
     let (first, second) = diagnostics.split_at(diagnostics.len() / CHUNK / 2 * CHUNK);
     std::thread::scope(|scope| {
         let helper = scope.spawn(|| write(second));
@@ -338,6 +393,16 @@ fn old_items_before(
         .rev()
         .flat_map(|chunk| chunk.diagnostics.iter().rev())
         .skip(old_count - end - skipped)
+}
+
+/// The common start and end `change` gives for `count` new findings, as they are: without comparing
+/// anything, only a change that replaced nothing by nothing in place says that all are common.
+fn exact_ends(count: usize, change: FindingsChange) -> (usize, usize, isize) {
+    let replaced_nothing = change.start == change.old_end && change.start == change.new_end;
+    if replaced_nothing && change.line_delta == 0 {
+        return (count, 0, 0);
+    }
+    (change.start, count - change.new_end, change.line_delta)
 }
 
 /// Like [`common_ends`], from what `change` says: the common start and end it gives, each grown by
@@ -448,7 +513,7 @@ mod tests {
         for count in [100, 300, 3 * PARALLEL_MIN_DIAGNOSTICS / 2] {
             let mut random = Random(0x1234_5678 ^ count as u64);
             let mut diagnostics = findings_every_third_line(&mut random, count);
-            let mut array = DiagnosticsArray::build(None, &diagnostics, None);
+            let mut array = DiagnosticsArray::build(None, &diagnostics, None, &Columns::Bytes);
             assert_eq!(array.json().to_vec(), full(&diagnostics));
             for step in 0..300 {
                 // An edit at one line: its findings change, and the later lines may move.
@@ -474,7 +539,7 @@ mod tests {
                     70 => next = diagnostics.clone(),
                     _ => {}
                 }
-                let built = DiagnosticsArray::build(Some(&array), &next, None);
+                let built = DiagnosticsArray::build(Some(&array), &next, None, &Columns::Bytes);
                 assert_eq!(
                     String::from_utf8_lossy(&built.json().to_vec()),
                     String::from_utf8_lossy(&full(&next)),
@@ -492,10 +557,10 @@ mod tests {
     fn an_edit_writes_only_the_chunks_around_it() {
         let mut random = Random(7);
         let diagnostics = findings_every_third_line(&mut random, 10 * CHUNK);
-        let array = DiagnosticsArray::build(None, &diagnostics, None);
+        let array = DiagnosticsArray::build(None, &diagnostics, None, &Columns::Bytes);
         let mut next = diagnostics.clone();
         next[5 * CHUNK + 3] = diagnostic(&mut random, next[5 * CHUNK + 3].line);
-        let built = DiagnosticsArray::build(Some(&array), &next, None);
+        let built = DiagnosticsArray::build(Some(&array), &next, None, &Columns::Bytes);
         let shared = built
             .chunks
             .iter()
@@ -503,7 +568,7 @@ mod tests {
             .count();
         assert_eq!(shared, 9, "every chunk but the changed one is taken over");
         assert_eq!(built.json().to_vec(), full(&next));
-        let again = DiagnosticsArray::build(Some(&built), &next, None);
+        let again = DiagnosticsArray::build(Some(&built), &next, None, &Columns::Bytes);
         assert!(
             again
                 .chunks
@@ -517,7 +582,8 @@ mod tests {
 
     #[test]
     fn arrays_join_also_when_one_is_empty() {
-        let join = |first: &[u8], second: &[u8]| JsonArray::from_json(first).join_array(second);
+        let join =
+            |first: &[u8], second: &[u8]| JsonArray::default().join_array(first).join_array(second);
         assert_eq!(join(b"[1,2]", b"[3]").to_vec(), b"[1,2,3]");
         assert_eq!(join(b"[]", b"[3]").to_vec(), b"[3]");
         assert_eq!(join(b"[1]", b"[]").to_vec(), b"[1]");
@@ -531,7 +597,7 @@ mod tests {
         let mut random = Random(3);
         for count in [0, 1, 2 * CHUNK + 5] {
             let diagnostics = findings_every_third_line(&mut random, count);
-            let array = DiagnosticsArray::build(None, &diagnostics, None);
+            let array = DiagnosticsArray::build(None, &diagnostics, None, &Columns::Bytes);
             for extra in [&b"[]"[..], b"[{\"a\":1}]", b"[{\"a\":1},{\"b\":2}]"] {
                 let joined = array.json().join_array(extra);
                 let value: serde_json::Value = serde_json::from_slice(&joined.to_vec())
@@ -551,7 +617,7 @@ mod tests {
             .iter()
             .map(|&line| diagnostic(&mut random, line))
             .collect();
-        let array = DiagnosticsArray::build(None, &old, None);
+        let array = DiagnosticsArray::build(None, &old, None, &Columns::Bytes);
         for delta in [-7isize, 1, 3, 900_000] {
             let new: Vec<LineDiagnostic> = old
                 .iter()
@@ -561,7 +627,7 @@ mod tests {
                     moved
                 })
                 .collect();
-            let built = DiagnosticsArray::build(Some(&array), &new, None);
+            let built = DiagnosticsArray::build(Some(&array), &new, None, &Columns::Bytes);
             assert_eq!(built.json().to_vec(), full(&new), "delta {delta}");
         }
     }
@@ -583,7 +649,8 @@ mod tests {
         let config = std::sync::Arc::new(MachineConfig::mill());
         let mut analysis =
             DocumentAnalysis::new(&TextLines::new(&text(&lines)), config, ProgramKind::Main);
-        let mut array = DiagnosticsArray::build(None, analysis.diagnostics(), None);
+        let mut array =
+            DiagnosticsArray::build(None, analysis.diagnostics(), None, &Columns::Bytes);
         let mut revision = analysis.findings_revision();
         let mut random = Random(0xC0FF_EE11);
         let mut known = 0;
@@ -614,7 +681,12 @@ mod tests {
             analysis.update(&TextLines::new(&text(&lines)), line, removed, inserted);
             let change = analysis.findings_change_since(revision);
             known += usize::from(change.is_some());
-            array = DiagnosticsArray::build(Some(&array), analysis.diagnostics(), change);
+            array = DiagnosticsArray::build(
+                Some(&array),
+                analysis.diagnostics(),
+                change,
+                &Columns::Bytes,
+            );
             revision = analysis.findings_revision();
             assert!(array.is_of(analysis.diagnostics()), "step {step}");
             assert!(
@@ -623,5 +695,115 @@ mod tests {
             );
         }
         assert!(known > 150, "{known} of 200 edits said what they changed");
+    }
+
+    /// In a document that is not ASCII, under UTF-16 positions, arrays built from the last one equal
+    /// arrays written anew with the lines' texts: through edits that put umlauts and an emoji before
+    /// findings on their lines, take them out again, and insert and remove lines.
+    #[test]
+    fn arrays_of_a_document_that_is_not_ascii_equal_arrays_written_anew() {
+        use crate::analysis::document::{DocumentAnalysis, LineSource, TextLines};
+        use crate::analysis::ProgramKind;
+        use crate::config::MachineConfig;
+        let mut lines: Vec<String> = (0..3000)
+            .map(|index| match index % 4 {
+                0 => format!("N{index} MSG(\"ab\") G1 X=AC{index} F100"),
+                1 => format!("N{index} G1 X{index} F100 ; Bohrung für Ø{index}"),
+                _ => format!("N{index} G1 X{index} F100"),
+            })
+            .collect();
+        let text = |lines: &[String]| lines.join("\n") + "\n";
+        let config = std::sync::Arc::new(MachineConfig::mill());
+        let written = |text: &str, analysis: &DocumentAnalysis| {
+            let source = TextLines::new(text);
+            diagnostics_json(
+                analysis.diagnostics(),
+                |line| Cow::Owned(source.line(line).into_owned()),
+                false,
+                PositionEncoding::Utf16,
+            )
+        };
+        let current = text(&lines);
+        let mut analysis =
+            DocumentAnalysis::new(&TextLines::new(&current), config, ProgramKind::Main);
+        let built = |previous: Option<&DiagnosticsArray>,
+                     text: &str,
+                     analysis: &DocumentAnalysis,
+                     change: Option<FindingsChange>| {
+            let source = TextLines::new(text);
+            let line_text = |line: usize| Cow::Owned(source.line(line).into_owned());
+            let columns = Columns::InLine {
+                line_text: &line_text,
+                encoding: PositionEncoding::Utf16,
+            };
+            DiagnosticsArray::build(previous, analysis.diagnostics(), change, &columns)
+        };
+        let mut array = built(None, &current, &analysis, None);
+        assert!(array.json().to_vec() == written(&current, &analysis));
+        let mut revision = analysis.findings_revision();
+        let mut random = Random(0x51DE_C0DE);
+        for step in 0..200 {
+            let line = random.below(lines.len() - 1);
+            let (line, removed, inserted) = match step % 6 {
+                // A skip mark and two letters before the findings of the line.
+                0 => {
+                    lines[line].insert_str(0, "/ab ");
+                    (line, 1, 1)
+                }
+                // Two letters before the findings replaced by an umlaut of the same bytes, or back:
+                // the findings' byte spans stay as they were, their UTF-16 columns do not.
+                1 => {
+                    let (from, to) = match step % 4 {
+                        1 => ("MSG(\"ab\")", "MSG(\"ä\")"),
+                        _ => ("MSG(\"ä\")", "MSG(\"ab\")"),
+                    };
+                    let found = (line..lines.len())
+                        .chain(0..line)
+                        .find(|&index| lines[index].contains(from));
+                    let index = found.unwrap_or(line);
+                    lines[index] = lines[index].replacen(from, to, 1);
+                    (index, 1, 1)
+                }
+                2 => {
+                    lines[line].insert_str(0, "/😀 ");
+                    (line, 1, 1)
+                }
+                3 => {
+                    lines.insert(line, format!("N7 X=AC{step} ; Maß"));
+                    (line, 0, 1)
+                }
+                4 => {
+                    lines.remove(line);
+                    (line, 1, 0)
+                }
+                _ => {
+                    lines[line].insert(0, ' ');
+                    (line, 1, 1)
+                }
+            };
+            let current = text(&lines);
+            analysis.update(&TextLines::new(&current), line, removed, inserted);
+            let change = analysis.findings_change_since(revision);
+            array = built(Some(&array), &current, &analysis, change);
+            revision = analysis.findings_revision();
+            assert!(
+                array.json().to_vec() == written(&current, &analysis),
+                "step {step}"
+            );
+        }
+        // After the document became ASCII again, byte columns take over what was written before.
+        let ascii: Vec<String> = lines
+            .iter()
+            .map(|line| line.replace(['ä', 'ü', 'ß', 'Ø'], "a").replace('😀', "e"))
+            .collect();
+        let current = text(&ascii);
+        analysis = DocumentAnalysis::new(
+            &TextLines::new(&current),
+            std::sync::Arc::new(MachineConfig::mill()),
+            ProgramKind::Main,
+        );
+        let next =
+            DiagnosticsArray::build(Some(&array), analysis.diagnostics(), None, &Columns::Bytes);
+        assert!(next.json().to_vec() == full(analysis.diagnostics()));
     }
 }

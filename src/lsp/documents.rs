@@ -9,9 +9,9 @@ use crate::analysis::document::{DocumentAnalysis, LineSource};
 use crate::analysis::ProgramKind;
 use crate::config::MachineConfig;
 use crate::diagnostics::LineDiagnostic;
-use crate::lsp::convert::{diagnostics_json, publish_diagnostics_frame, PositionEncoding};
+use crate::lsp::convert::{publish_diagnostics_frame, PositionEncoding};
 use crate::lsp::cross_file::{with_extra, ExtraDiagnostics};
-use crate::lsp::diagnostics_array::{DiagnosticsArray, JsonArray};
+use crate::lsp::diagnostics_array::{Columns, DiagnosticsArray, JsonArray};
 use crate::lsp::diagnostics_limit::{note_json, within_limit};
 use crate::lsp::log;
 use crate::lsp::outgoing::{Outgoing, OutgoingSender};
@@ -160,17 +160,17 @@ impl OpenDocument {
         encoding: PositionEncoding,
     ) -> JsonArray {
         let all_ascii = analysed.rope.len_bytes() == analysed.rope.len_chars();
-        let mut published = lock(&self.published);
-        if !all_ascii {
-            *published = None;
-            let lines = analysed.lines();
-            return JsonArray::from_json(&diagnostics_json(
-                diagnostics,
-                |line_idx| lines.line(line_idx),
-                false,
+        let lines = analysed.lines();
+        let line_text = |line_idx: usize| lines.line(line_idx);
+        let columns = if all_ascii || encoding == PositionEncoding::Utf8 {
+            Columns::Bytes
+        } else {
+            Columns::InLine {
+                line_text: &line_text,
                 encoding,
-            ));
-        }
+            }
+        };
+        let mut published = lock(&self.published);
         // Unchanged diagnostics are found while building: every chunk is then taken over. The
         // analysis says which of its findings an edit replaced; only those are compared then.
         let previous = published.as_ref().filter(|last| last.encoding == encoding);
@@ -179,7 +179,12 @@ impl OpenDocument {
             .and_then(|last| last.findings_revision)
             .filter(|_| all_of_them)
             .and_then(|revision| analysis.findings_change_since(revision));
-        let array = DiagnosticsArray::build(previous.map(|last| &last.array), diagnostics, change);
+        let array = DiagnosticsArray::build(
+            previous.map(|last| &last.array),
+            diagnostics,
+            change,
+            &columns,
+        );
         let json = array.json().clone();
         *published = Some(Published {
             encoding,
