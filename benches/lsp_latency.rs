@@ -6,18 +6,20 @@
 //! publishDiagnostics of that version (median and p99) — a space at the start of a line of `cam3d`
 //! (meaning unchanged) and a changed coordinate digit in `inc` (every later position moves); hover
 //! median and p99; the server's resident memory; and what the diagnostics cost to serialize and send.
-//! Each program is measured twice: with every finding published (the server's default), and with
-//! `maxDiagnostics` at 1,000, as the VS Code extension starts the server.
+//! Each program is measured in three setups: with every finding published (the server's default)
+//! and with `maxDiagnostics` at 1,000 (as the VS Code extension starts the server), both over pipes
+//! (as Rust's, Python's and most process libraries start a child), and with every finding published
+//! over Unix socket pairs (as libuv, under VS Code's Node.js and Neovim, starts one).
 //!
 //! Run with `cargo bench --bench lsp_latency`. `BENCH_LINES` (default 1,000,000), `BENCH_EDITS` and
 //! `BENCH_HOVERS` (default 200 each) and `BENCH_BUDGET_SECS` (default 240, per measurement: a slow
 //! server is measured on fewer samples, and the count is printed) change the run. `BENCH_STYLES`
-//! (default `cam3d,inc`) and `BENCH_SETUPS` (default 2: both setups; 1: every finding published
-//! only) narrow it.
+//! (default `cam3d,inc`) and `BENCH_SETUPS` (default 3: all setups; 1: the first only, 2: the first
+//! two) narrow it.
 
 use serde_json::{json, Value};
 use std::io::{BufRead, BufReader, Read, Write};
-use std::process::{Child, ChildStdin, Command, Stdio};
+use std::process::{Child, Command, Stdio};
 use std::sync::mpsc;
 use std::thread;
 use std::time::{Duration, Instant};
@@ -79,7 +81,7 @@ fn read_large(body: &[u8]) -> (Value, usize) {
 
 struct Server {
     child: Child,
-    stdin: ChildStdin,
+    stdin: Box<dyn Write + Send>,
     arrivals: mpsc::Receiver<Arrival>,
     keep_text: std::sync::Arc<std::sync::atomic::AtomicBool>,
     next_id: i64,
@@ -92,19 +94,46 @@ fn frame(value: &Value) -> Vec<u8> {
     message
 }
 
+/// What the server's stdin and stdout are.
+#[derive(Clone, Copy, PartialEq)]
+enum Transport {
+    /// Pipes, as Rust's, Python's and most other process libraries make them.
+    Pipes,
+    /// Unix socket pairs, as libuv makes them for a child's stdio (VS Code's Node.js, Neovim).
+    SocketPairs,
+}
+
 impl Server {
-    fn start() -> Server {
-        let mut child = Command::new(env!("CARGO_BIN_EXE_sinumerik-lsp"))
-            .stdin(Stdio::piped())
-            .stdout(Stdio::piped())
-            // The server's log says how long its analyses and diagnostics took (when over 100 ms).
-            .stderr(Stdio::from(
-                std::fs::File::create(log_path()).expect("the log file can be created"),
-            ))
-            .spawn()
-            .expect("the server binary starts");
-        let stdin = child.stdin.take().unwrap();
-        let stdout = child.stdout.take().unwrap();
+    fn start(transport: Transport) -> Server {
+        let mut command = Command::new(env!("CARGO_BIN_EXE_sinumerik-lsp"));
+        // The server's log says how long its analyses and diagnostics took (when over 100 ms).
+        command.stderr(Stdio::from(
+            std::fs::File::create(log_path()).expect("the log file can be created"),
+        ));
+        let (stdin, stdout, child): (Box<dyn Write + Send>, Box<dyn Read + Send>, Child) =
+            match transport {
+                Transport::Pipes => {
+                    let mut child = command
+                        .stdin(Stdio::piped())
+                        .stdout(Stdio::piped())
+                        .spawn()
+                        .expect("the server binary starts");
+                    let stdin = child.stdin.take().unwrap();
+                    let stdout = child.stdout.take().unwrap();
+                    (Box::new(stdin), Box::new(stdout), child)
+                }
+                Transport::SocketPairs => {
+                    let (to_server, server_input) = std::os::unix::net::UnixStream::pair().unwrap();
+                    let (from_server, server_output) =
+                        std::os::unix::net::UnixStream::pair().unwrap();
+                    let child = command
+                        .stdin(Stdio::from(std::os::fd::OwnedFd::from(server_input)))
+                        .stdout(Stdio::from(std::os::fd::OwnedFd::from(server_output)))
+                        .spawn()
+                        .expect("the server binary starts");
+                    (Box::new(to_server), Box::new(from_server), child)
+                }
+            };
         let (sender, arrivals) = mpsc::channel();
         let keep_text = std::sync::Arc::new(std::sync::atomic::AtomicBool::new(false));
         let keep_next_text = std::sync::Arc::clone(&keep_text);
@@ -355,6 +384,7 @@ fn edit_for(style: &str, line: &str) -> Option<(usize, usize, String)> {
 struct Setup {
     name: &'static str,
     options: Value,
+    transport: Transport,
 }
 
 fn run(style: &str, line_count: usize, setup: &Setup) {
@@ -370,7 +400,7 @@ fn run(style: &str, line_count: usize, setup: &Setup) {
         lines.len()
     );
     let budget = Duration::from_secs(env_number("BENCH_BUDGET_SECS", 240) as u64);
-    let mut server = Server::start();
+    let mut server = Server::start(setup.transport);
     let (_, id) = server.request(
         "initialize",
         json!({"processId": null, "rootUri": null, "capabilities": {"general": {"positionEncodings": ["utf-16"]}}, "initializationOptions": setup.options}),
@@ -573,12 +603,20 @@ fn main() {
     println!("language server latency over stdio, {line_count}-line programs, release binary");
     let setups = [
         Setup {
-            name: "every finding published (the server's default)",
+            name: "every finding published (the server's default), over pipes",
             options: json!({}),
+            transport: Transport::Pipes,
         },
         Setup {
-            name: "maxDiagnostics 1000 (what the VS Code extension sends)",
+            name: "maxDiagnostics 1000 (what the VS Code extension sends), over pipes",
             options: json!({"maxDiagnostics": 1000}),
+            transport: Transport::Pipes,
+        },
+        Setup {
+            name:
+                "every finding published, over socket pairs (as VS Code and Neovim start a server)",
+            options: json!({}),
+            transport: Transport::SocketPairs,
         },
     ];
     let styles = std::env::var("BENCH_STYLES").unwrap_or_else(|_| "cam3d,inc".to_string());
