@@ -93,6 +93,14 @@ struct CircleWords {
     span: Option<crate::diagnostics::Span>,
 }
 
+/// The span from the first to the last of the statements, `None` when there are none.
+fn statements_span(statements: &[Statement]) -> Option<crate::diagnostics::Span> {
+    statements
+        .iter()
+        .map(Statement::span)
+        .reduce(|whole, span| whole.to(span))
+}
+
 /// Interprets blocks one after the other.
 pub struct Engine<'a> {
     config: &'a MachineConfig,
@@ -493,8 +501,6 @@ impl<'a> Engine<'a> {
         let mut frame_data_changed = forget_for_frames;
         let mut circle_words = CircleWords::default();
         for statement in statements {
-            let span = statement.span();
-            circle_words.span = Some(circle_words.span.map_or(span, |whole| whole.to(span)));
             match statement {
                 Statement::Address(word) => match word.kind {
                     AddressKind::Axis => {
@@ -684,6 +690,11 @@ impl<'a> Engine<'a> {
             .unwrap_or(Cow::Borrowed(""));
         let polar_move = polar.angle.is_some() || polar.radius.is_some();
         let moves_path = moved && functions.frame_or_pole.is_none() && !functions.dwell;
+        // The span of the block's words is needed only by findings about a circle (and the rare ones
+        // below): it is worked out for the blocks that may have one, not for every block.
+        if moves_path && matches!(motion.as_ref(), "G2" | "G3" | "CIP") {
+            circle_words.span = statements_span(statements);
+        }
         let arc = if moves_path {
             match motion.as_ref() {
                 // A polar circle turns around the pole; the start must lie on it (reference §5.2).
@@ -722,12 +733,12 @@ impl<'a> Engine<'a> {
             let name = crate::analysis::offsets::frame_name(index);
             diagnostics.push(Diagnostic::new(
                 Code::SettableDataNotActive,
-                circle_words.span.unwrap_or_default(),
+                statements_span(statements).unwrap_or_default(),
                 format!("the data of {name} ($P_UIFR[{index}]) were changed while {name} was active; this move still uses the old data: program {name} again to activate them"),
             ));
         }
         if moves_axes {
-            self.check_axes_after_rotation(circle_words.span.unwrap_or_default(), diagnostics);
+            self.check_axes_after_rotation(statements, diagnostics);
         }
         if functions.machine_coordinates && find_word(statements, AddressKind::Axis).is_none() {
             // G53/G153/SUPA are non-modal (reference §2.3, §9.2 #13).
