@@ -5,6 +5,7 @@
 
 use crate::analysis::axis_lookup::AxisLookup;
 use crate::analysis::eval::{evaluate, EvalError, Variables};
+use crate::analysis::four_decimals::FourDecimals;
 use crate::analysis::state::ModalState;
 use crate::config::{AxisKind, MachineConfig};
 use crate::diagnostics::{Code, Diagnostic};
@@ -882,7 +883,7 @@ impl<'a> Engine<'a> {
             let programmed = self.state.programmed[index];
             let difference = match (programmed, self.state.positions[index]) {
                 (Some(programmed), Some(current)) => ((programmed - current).abs() > 1e-9)
-                    .then(|| format!("{:.4}", programmed - current)),
+                    .then(|| FourDecimals(programmed - current).to_string()),
                 (Some(_), None) => Some("an unknown amount".to_string()),
                 _ => None,
             };
