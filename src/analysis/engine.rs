@@ -5,6 +5,7 @@
 
 use crate::analysis::axis_lookup::AxisLookup;
 use crate::analysis::eval::{evaluate, EvalError, Variables};
+use crate::analysis::four_decimals::FourDecimals;
 use crate::analysis::state::ModalState;
 use crate::config::{AxisKind, MachineConfig};
 use crate::diagnostics::{Code, Diagnostic};
@@ -91,6 +92,14 @@ struct CircleWords {
     turns: Option<(Option<f64>, crate::diagnostics::Span)>,
     /// The span of the block's words, for findings about the circle as a whole.
     span: Option<crate::diagnostics::Span>,
+}
+
+/// The span from the first to the last of the statements, `None` when there are none.
+fn statements_span(statements: &[Statement]) -> Option<crate::diagnostics::Span> {
+    statements
+        .iter()
+        .map(Statement::span)
+        .reduce(|whole, span| whole.to(span))
 }
 
 /// Interprets blocks one after the other.
@@ -493,8 +502,6 @@ impl<'a> Engine<'a> {
         let mut frame_data_changed = forget_for_frames;
         let mut circle_words = CircleWords::default();
         for statement in statements {
-            let span = statement.span();
-            circle_words.span = Some(circle_words.span.map_or(span, |whole| whole.to(span)));
             match statement {
                 Statement::Address(word) => match word.kind {
                     AddressKind::Axis => {
@@ -684,6 +691,11 @@ impl<'a> Engine<'a> {
             .unwrap_or(Cow::Borrowed(""));
         let polar_move = polar.angle.is_some() || polar.radius.is_some();
         let moves_path = moved && functions.frame_or_pole.is_none() && !functions.dwell;
+        // The span of the block's words is needed only by findings about a circle (and the rare ones
+        // below): it is worked out for the blocks that may have one, not for every block.
+        if moves_path && matches!(motion.as_ref(), "G2" | "G3" | "CIP") {
+            circle_words.span = statements_span(statements);
+        }
         let arc = if moves_path {
             match motion.as_ref() {
                 // A polar circle turns around the pole; the start must lie on it (reference §5.2).
@@ -722,12 +734,12 @@ impl<'a> Engine<'a> {
             let name = crate::analysis::offsets::frame_name(index);
             diagnostics.push(Diagnostic::new(
                 Code::SettableDataNotActive,
-                circle_words.span.unwrap_or_default(),
+                statements_span(statements).unwrap_or_default(),
                 format!("the data of {name} ($P_UIFR[{index}]) were changed while {name} was active; this move still uses the old data: program {name} again to activate them"),
             ));
         }
         if moves_axes {
-            self.check_axes_after_rotation(circle_words.span.unwrap_or_default(), diagnostics);
+            self.check_axes_after_rotation(statements, diagnostics);
         }
         if functions.machine_coordinates && find_word(statements, AddressKind::Axis).is_none() {
             // G53/G153/SUPA are non-modal (reference §2.3, §9.2 #13).
@@ -871,7 +883,7 @@ impl<'a> Engine<'a> {
             let programmed = self.state.programmed[index];
             let difference = match (programmed, self.state.positions[index]) {
                 (Some(programmed), Some(current)) => ((programmed - current).abs() > 1e-9)
-                    .then(|| format!("{:.4}", programmed - current)),
+                    .then(|| FourDecimals(programmed - current).to_string()),
                 (Some(_), None) => Some("an unknown amount".to_string()),
                 _ => None,
             };

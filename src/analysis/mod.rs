@@ -14,6 +14,7 @@ pub mod circle;
 pub mod document;
 pub mod engine;
 pub mod eval;
+pub mod four_decimals;
 pub mod frame;
 pub mod machine;
 pub mod offsets;

@@ -17,7 +17,7 @@ impl Engine<'_> {
     /// axes the change affects that the move leaves out (reference §3.9 [?]).
     pub(super) fn check_axes_after_rotation(
         &mut self,
-        span: crate::diagnostics::Span,
+        statements: &[Statement],
         diagnostics: &mut Vec<Diagnostic>,
     ) {
         let rotated = std::mem::take(&mut self.memory.rotated_slots);
@@ -48,7 +48,7 @@ impl Engine<'_> {
             };
             diagnostics.push(Diagnostic::new(
                 Code::AxisLeftOutAfterRotation,
-                span,
+                super::statements_span(statements).unwrap_or_default(),
                 format!("{} {verb} left out of the first move after a frame change that rotates, scales or mirrors: the last programmed value is not kept, the position in the new coordinates is, so this move may move {pronoun} too; program all geometry axes here", left_out.join(", ")),
             ));
         }

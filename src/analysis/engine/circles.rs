@@ -5,6 +5,7 @@
 
 use super::{CircleWords, Engine};
 use crate::analysis::circle::{self, Circle, CircleError};
+use crate::analysis::four_decimals::FourDecimals;
 use crate::config::AxisKind;
 use crate::diagnostics::{Code, Diagnostic, Span};
 use crate::syntax::ast::{AddressWord, Block, Modifier};
@@ -354,11 +355,19 @@ fn report_circle_error(error: CircleError, span: Span, diagnostics: &mut Vec<Dia
             tolerance,
         } => (
             Code::CircleEndNotOnCircle,
-            format!("the end point is {difference:.4} off the circle, more than the tolerance {tolerance:.4} (alarm 14040)"),
+            format!(
+                "the end point is {} off the circle, more than the tolerance {} (alarm 14040)",
+                FourDecimals(difference),
+                FourDecimals(tolerance)
+            ),
         ),
         CircleError::RadiusTooSmall { chord, radius } => (
             Code::CircleRadiusTooSmall,
-            format!("CR={radius:.4} is smaller than half the distance to the end point ({:.4}): no such circle exists", chord / 2.0),
+            format!(
+                "CR={} is smaller than half the distance to the end point ({}): no such circle exists",
+                FourDecimals(radius),
+                FourDecimals(chord / 2.0)
+            ),
         ),
         CircleError::RadiusFullCircle => (
             Code::CircleRadiusFullCircle,
