@@ -103,7 +103,7 @@ pub fn serve_stdio() -> u8 {
             return 2;
         }
     };
-    stdio::enlarge_pipe_buffers();
+    stdio::enlarge_stdio_buffers();
     runtime.block_on(serve_on(
         tokio::io::stdin(),
         outgoing::Sink::<tokio::io::Stdout>::Thread(stdio::stdout_output()),

@@ -14,18 +14,50 @@ use std::io::Write;
 #[cfg(target_os = "linux")]
 const PIPE_BUFFER_BYTES: libc::c_int = 1 << 20;
 
-/// Enlarges the buffers of stdin and stdout where they are pipes. Anything else (a terminal, a file,
-/// a socket), or a refusal by the kernel, leaves them as they are: the size only changes the speed.
-pub fn enlarge_pipe_buffers() {
+/// The send buffer asked for when stdout is a socket (the kernel doubles it, up to
+/// `/proc/sys/net/core/wmem_max`).
+#[cfg(target_os = "linux")]
+const SOCKET_SEND_BUFFER_BYTES: libc::c_int = 2 << 20;
+
+/// Enlarges the buffers of stdin and stdout: those of pipes, and the send buffer of stdout when it is
+/// a Unix socket, as libuv (VS Code's Node.js, Neovim) makes a child's stdio. With the default
+/// 208 KiB a 9.1 MB publication crossed a socket pair in about 2 ms, but one in a hundred took 10-60
+/// ms on the 2-core machine the server is measured on; with 4 MiB none took over 5 ms. Anything else
+/// (a terminal, a file), or a refusal by the kernel, leaves them as they are: the size only changes
+/// the speed.
+pub fn enlarge_stdio_buffers() {
     #[cfg(target_os = "linux")]
-    for fd in [0, 1] {
-        // SAFETY: fstat and fcntl only read and set properties of the descriptor; 0 and 1 stay open
-        // for the whole life of the process.
-        unsafe {
-            let mut status: libc::stat = std::mem::zeroed();
-            if libc::fstat(fd, &mut status) == 0 && status.st_mode & libc::S_IFMT == libc::S_IFIFO {
+    {
+        enlarge_buffer(0, false);
+        enlarge_buffer(1, true);
+    }
+}
+
+/// Enlarges the buffer of `fd` if it is a pipe, or its send buffer if it is a socket the server
+/// writes to (`output`).
+#[cfg(target_os = "linux")]
+fn enlarge_buffer(fd: std::os::fd::RawFd, output: bool) {
+    // SAFETY: fstat, fcntl and setsockopt only read and set properties of the descriptor (the
+    // option's value is a valid c_int), which the caller keeps open.
+    unsafe {
+        let mut status: libc::stat = std::mem::zeroed();
+        if libc::fstat(fd, &mut status) != 0 {
+            return;
+        }
+        match status.st_mode & libc::S_IFMT {
+            libc::S_IFIFO => {
                 libc::fcntl(fd, libc::F_SETPIPE_SZ, PIPE_BUFFER_BYTES);
             }
+            libc::S_IFSOCK if output => {
+                libc::setsockopt(
+                    fd,
+                    libc::SOL_SOCKET,
+                    libc::SO_SNDBUF,
+                    (&SOCKET_SEND_BUFFER_BYTES as *const libc::c_int).cast(),
+                    std::mem::size_of::<libc::c_int>() as libc::socklen_t,
+                );
+            }
+            _ => {}
         }
     }
 }
@@ -406,5 +438,50 @@ mod pipe_tests {
         let _ = std::fs::remove_file(&path);
         assert_eq!(&written[..4], b"head");
         assert!(written[4..] == frozen[..]);
+    }
+}
+
+#[cfg(all(test, target_os = "linux"))]
+mod buffer_tests {
+    use super::*;
+    use std::os::fd::AsRawFd;
+
+    fn send_buffer(fd: std::os::fd::RawFd) -> libc::c_int {
+        let mut value: libc::c_int = 0;
+        let mut length = std::mem::size_of::<libc::c_int>() as libc::socklen_t;
+        // SAFETY: getsockopt writes one c_int into `value`, whose size `length` gives.
+        unsafe {
+            libc::getsockopt(
+                fd,
+                libc::SOL_SOCKET,
+                libc::SO_SNDBUF,
+                (&mut value as *mut libc::c_int).cast(),
+                &mut length,
+            );
+        }
+        value
+    }
+
+    #[test]
+    fn the_send_buffer_of_an_output_socket_grows_as_far_as_the_system_allows() {
+        let (output, _reader) = std::os::unix::net::UnixStream::pair().unwrap();
+        let before = send_buffer(output.as_raw_fd());
+        enlarge_buffer(output.as_raw_fd(), true);
+        let after = send_buffer(output.as_raw_fd());
+        let most: libc::c_int = std::fs::read_to_string("/proc/sys/net/core/wmem_max")
+            .ok()
+            .and_then(|text| text.trim().parse().ok())
+            .unwrap_or(0);
+        // The kernel doubles what it is asked for, up to twice the system's maximum.
+        let expected = (2 * SOCKET_SEND_BUFFER_BYTES).min(2 * most).max(before);
+        assert_eq!(after, expected, "before {before}, maximum {most}");
+    }
+
+    #[test]
+    fn an_input_socket_is_left_as_it_is() {
+        let (input, _writer) = std::os::unix::net::UnixStream::pair().unwrap();
+        let before = send_buffer(input.as_raw_fd());
+        enlarge_buffer(input.as_raw_fd(), false);
+        assert_eq!(send_buffer(input.as_raw_fd()), before);
     }
 }
