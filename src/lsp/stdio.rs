@@ -2,7 +2,8 @@
 //! program's diagnostics is megabytes of JSON, and a pipe moves them in pieces of its buffer's size
 //! (64 KiB by default on Linux), each piece a wake-up of the editor and of the server: the buffers
 //! are enlarged to 1 MiB, the most an unprivileged process may ask for by default, which made a
-//! 7.8 MB message arrive in about a third of the time. The output is written by a thread of its own
+//! 7.8 MB message arrive in about a third of the time (a socket's send buffer is enlarged too, see
+//! [`enlarge_stdio_buffers`]). The output is written by a thread of its own
 //! straight to the file descriptor, without the copy into tokio's buffers, and the large pieces of a
 //! message, which lie in pages of their own (`frozen_bytes.rs`), are handed to the pipe as pages
 //! (`vmsplice`) instead of being copied: that took the same message's transfer from about 3 ms to
