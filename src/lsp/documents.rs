@@ -87,10 +87,9 @@ pub struct TextSnapshot {
     pub config: Arc<MachineConfig>,
 }
 
-/// Diagnostics as last written. In an ASCII document the text of a diagnostic depends only on the
-/// diagnostic (columns are byte offsets), so the next array reuses what this one wrote: an edit that
-/// leaves every diagnostic as it was (most keystrokes in a large program) reuses all of it, and one
-/// that changes a few rewrites only those.
+/// Diagnostics as last written. The next array reuses what this one wrote: an edit that leaves every
+/// diagnostic as it was (most keystrokes in a large program) reuses all of it, and one that changes a
+/// few rewrites only those (see `diagnostics_array.rs`, also for documents that are not ASCII).
 struct Published {
     encoding: PositionEncoding,
     array: DiagnosticsArray,
