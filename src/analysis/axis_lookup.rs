@@ -122,18 +122,14 @@ mod tests {
 
     #[test]
     fn the_table_finds_what_comparing_the_names_finds() {
-        let axis = |name: &str, kind| Axis {
-            name: name.to_string(),
-            kind,
-        };
         let mut config = MachineConfig::mill();
         config.axes = vec![
-            axis("x", AxisKind::Linear),
-            axis("Y", AxisKind::Linear),
-            axis("X", AxisKind::Modulo),
-            axis("C1", AxisKind::Modulo),
-            axis("AX", AxisKind::Linear),
-            axis("Ä", AxisKind::Linear),
+            Axis::new("x", AxisKind::Linear),
+            Axis::new("Y", AxisKind::Linear),
+            Axis::new("X", AxisKind::Modulo),
+            Axis::new("C1", AxisKind::Modulo),
+            Axis::new("AX", AxisKind::Linear),
+            Axis::new("Ä", AxisKind::Linear),
         ];
         let line = "X1 x2 Y3 y4 Z5 C1=6 C7 AX=8 U9 F10 I1 POS[X]=2";
         let found = both_ways(&config, line);
@@ -153,14 +149,8 @@ mod tests {
     fn an_axis_beyond_the_table_is_found_by_its_name() {
         let mut config = MachineConfig::mill();
         config.axes = (0..300)
-            .map(|index| Axis {
-                name: format!("Q{index}"),
-                kind: AxisKind::Linear,
-            })
-            .chain(["U", "X"].map(|name| Axis {
-                name: name.to_string(),
-                kind: AxisKind::Linear,
-            }))
+            .map(|index| Axis::new(&format!("Q{index}"), AxisKind::Linear))
+            .chain(["U", "X"].map(|name| Axis::new(name, AxisKind::Linear)))
             .collect();
         let found = both_ways(&config, "U1 X2 Y3");
         assert_eq!(

@@ -53,6 +53,15 @@ pub struct Axis {
     pub kind: AxisKind,
 }
 
+impl Axis {
+    pub fn new(name: &str, kind: AxisKind) -> Axis {
+        Axis {
+            name: name.to_string(),
+            kind,
+        }
+    }
+}
+
 /// Everything the syntax and analysis layers need to know about the machine.
 #[derive(Debug, Clone, PartialEq)]
 pub struct MachineConfig {
@@ -103,12 +112,12 @@ impl MachineConfig {
         MachineConfig {
             kind: MachineKind::Mill,
             axes: vec![
-                axis("X", AxisKind::Linear),
-                axis("Y", AxisKind::Linear),
-                axis("Z", AxisKind::Linear),
-                axis("A", AxisKind::Modulo),
-                axis("B", AxisKind::Modulo),
-                axis("C", AxisKind::Modulo),
+                Axis::new("X", AxisKind::Linear),
+                Axis::new("Y", AxisKind::Linear),
+                Axis::new("Z", AxisKind::Linear),
+                Axis::new("A", AxisKind::Modulo),
+                Axis::new("B", AxisKind::Modulo),
+                Axis::new("C", AxisKind::Modulo),
             ],
             metric: true,
             reset_gcodes: Vec::new(),
@@ -130,9 +139,9 @@ impl MachineConfig {
         MachineConfig {
             kind: MachineKind::Turn,
             axes: vec![
-                axis("X", AxisKind::Transverse),
-                axis("Z", AxisKind::Linear),
-                axis("C", AxisKind::Modulo),
+                Axis::new("X", AxisKind::Transverse),
+                Axis::new("Z", AxisKind::Linear),
+                Axis::new("C", AxisKind::Modulo),
             ],
             reset_gcodes: vec!["G18".to_string(), "DIAMON".to_string()],
             ..MachineConfig::mill()
@@ -177,12 +186,5 @@ impl MachineConfig {
         self.extensions
             .iter()
             .any(|known| known.eq_ignore_ascii_case(extension))
-    }
-}
-
-fn axis(name: &str, kind: AxisKind) -> Axis {
-    Axis {
-        name: name.to_string(),
-        kind,
     }
 }
