@@ -71,24 +71,13 @@ impl Parser<'_> {
             // before and after the point are read by two loops, so that a digit is not asked whether
             // a point came before it.
             let mut mantissa: u64 = 0;
-            while index < length && bytes[index].is_ascii_digit() {
-                mantissa = mantissa
-                    .wrapping_mul(10)
-                    .wrapping_add(u64::from(bytes[index] - b'0'));
-                index += 1;
-            }
+            index = accumulate_digits(bytes, index, &mut mantissa);
             let mut digit_count = index - number_start;
             let has_point = index < length && bytes[index] == b'.';
             let mut decimals = 0;
             if has_point {
-                index += 1;
-                let fraction_start = index;
-                while index < length && bytes[index].is_ascii_digit() {
-                    mantissa = mantissa
-                        .wrapping_mul(10)
-                        .wrapping_add(u64::from(bytes[index] - b'0'));
-                    index += 1;
-                }
+                let fraction_start = index + 1;
+                index = accumulate_digits(bytes, fraction_start, &mut mantissa);
                 decimals = index - fraction_start;
                 digit_count += decimals;
             }
@@ -196,4 +185,17 @@ fn parse_plain_integer(text: &str) -> Option<u64> {
         value = value.checked_mul(10)?.checked_add(u64::from(byte - b'0'))?;
     }
     Some(value)
+}
+
+/// Reads the decimal digits of `bytes` from `index` on into `mantissa` (wrapping: a long number is
+/// parsed again in full); returns the index after the last digit.
+#[inline]
+fn accumulate_digits(bytes: &[u8], mut index: usize, mantissa: &mut u64) -> usize {
+    while let Some(&byte) = bytes.get(index).filter(|byte| byte.is_ascii_digit()) {
+        *mantissa = mantissa
+            .wrapping_mul(10)
+            .wrapping_add(u64::from(byte - b'0'));
+        index += 1;
+    }
+    index
 }
