@@ -200,15 +200,15 @@ async fn next_body<R: AsyncRead + Unpin>(
         // (a whole text in a didChange) is checked there too.
         let texts = Arc::clone(open_texts);
         let (taken_apart, check, original) = tokio::task::spawn_blocking(move || {
-            let taken_apart = take_text_out(&body, &texts);
-            let check = taken_apart.is_none().then(|| check_body(&body));
-            if taken_apart.is_some() {
-                // Giving back the pages of tens of megabytes takes milliseconds: not while the
-                // editor waits for the first diagnostics.
-                tokio::task::spawn_blocking(move || drop(body));
-                return (taken_apart, check, Vec::new());
+            match take_text_out(&body, &texts) {
+                Some(forwarded) => {
+                    // Giving back the pages of tens of megabytes takes milliseconds: not while the
+                    // editor waits for the first diagnostics.
+                    tokio::task::spawn_blocking(move || drop(body));
+                    (Some(forwarded), None, Vec::new())
+                }
+                None => (None, Some(check_body(&body)), body),
             }
-            (taken_apart, check, body)
         })
         .await
         .ok()?;
