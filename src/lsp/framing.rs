@@ -4,8 +4,8 @@
 //! first body it cannot read, which would end the server; with this guard a bad message costs only
 //! itself: after a wrong or missing length the guard finds the next header and reads on from there.
 
+use crate::lsp::arriving_open::{Arrived, ArrivingMessage};
 use crate::lsp::log;
-use crate::lsp::memory;
 use crate::lsp::open_texts::{take_text_out, OpenTexts, LARGE_MESSAGE_BYTES};
 use crate::lsp::outgoing::OutgoingSender;
 use serde::de::IgnoredAny;
@@ -117,10 +117,9 @@ impl<R: AsyncRead + Unpin> Input<R> {
         Ok(read)
     }
 
-    /// The next `length` bytes, read straight into a buffer of their own (see
-    /// [`memory::large_buffer`]).
+    /// The next `length` bytes, a message that is not large.
     async fn read_body(&mut self, length: usize) -> std::io::Result<Vec<u8>> {
-        let mut body = memory::large_buffer(length);
+        let mut body = Vec::with_capacity(length);
         let rest = &self.put_back[self.position..];
         let from_put_back = rest.len().min(length);
         body.extend_from_slice(&rest[..from_put_back]);
@@ -133,6 +132,83 @@ impl<R: AsyncRead + Unpin> Input<R> {
         }
         Ok(body)
     }
+
+    /// The next `length` bytes, a large message: handed in pieces, as they arrive, to a blocking
+    /// thread that reads the text of a `didOpen` meanwhile (`arriving_open.rs`) and, once all is
+    /// there, passes the message on or checks it.
+    async fn read_large_body(
+        &mut self,
+        length: usize,
+        texts: Arc<OpenTexts>,
+    ) -> std::io::Result<LargeBody> {
+        let (pieces, arrived) = std::sync::mpsc::channel::<Vec<u8>>();
+        let reading = tokio::task::spawn_blocking(move || {
+            let mut message = ArrivingMessage::new();
+            let mut received = 0;
+            for piece in arrived {
+                received += piece.len();
+                message.push(piece);
+            }
+            // Fewer bytes mean the input ended or failed: the reading side says so.
+            (received == length).then(|| read_arrived(message.finish(&texts), &texts))
+        });
+        let rest = &self.put_back[self.position..];
+        let from_put_back = rest.len().min(length);
+        let mut received = from_put_back;
+        // A send fails only when the thread is gone (a panic), which the join below reports.
+        let _ = pieces.send(rest[..from_put_back].to_vec());
+        self.consume_put_back(from_put_back);
+        while received < length {
+            let wanted = (length - received).min(ARRIVING_PIECE_BYTES);
+            let mut piece = Vec::with_capacity(wanted);
+            if (&mut self.reader)
+                .take(wanted as u64)
+                .read_buf(&mut piece)
+                .await?
+                == 0
+            {
+                return Err(std::io::ErrorKind::UnexpectedEof.into());
+            }
+            received += piece.len();
+            let _ = pieces.send(piece);
+        }
+        drop(pieces);
+        match reading.await {
+            Ok(Some(body)) => Ok(body),
+            _ => Err(std::io::Error::other("the large message could not be read")),
+        }
+    }
+}
+
+/// A large message goes to the thread that reads it in pieces of at most this size, small enough for
+/// the thread to start on the text soon.
+const ARRIVING_PIECE_BYTES: usize = 512 * 1024;
+
+/// A large message, read.
+enum LargeBody {
+    /// A `didOpen` with its text taken out: the message to pass on.
+    TextTaken(Vec<u8>),
+    /// Any other message, with what checking it found.
+    Other(Vec<u8>, Result<MessageKind, BodyProblem>),
+}
+
+/// What a large message that has arrived is, on a blocking thread. A `didOpen` whose text was not
+/// found while it arrived (its fields in an unusual order) has it taken out from the whole body.
+fn read_arrived(arrived: Arrived, texts: &OpenTexts) -> LargeBody {
+    let (forwarded, body) = match arrived {
+        Arrived::TextTaken { forwarded, pieces } => (forwarded, pieces),
+        Arrived::Other(body) => match take_text_out(&body, texts) {
+            Some(forwarded) => (forwarded, vec![body]),
+            None => {
+                let check = check_body(&body);
+                return LargeBody::Other(body, check);
+            }
+        },
+    };
+    // Giving back the pages of tens of megabytes takes milliseconds: not while the editor waits for
+    // the first diagnostics.
+    tokio::task::spawn_blocking(move || drop(body));
+    LargeBody::TextTaken(forwarded)
 }
 
 /// The value of a `Content-Length` header in `line`. The last one counts, wherever it starts: the
@@ -192,32 +268,23 @@ async fn next_body<R: AsyncRead + Unpin>(
             return Some(None);
         }
     };
-    let mut body = input.read_body(length).await.ok()?;
-    let mut checked = None;
-    if body.len() >= LARGE_MESSAGE_BYTES {
-        // A didOpen of megabytes is read once, into typed parameters, off the async threads; what
-        // goes on to the framework is then a small message written here. Any other large message
-        // (a whole text in a didChange) is checked there too.
-        let texts = Arc::clone(open_texts);
-        let (taken_apart, check, original) = tokio::task::spawn_blocking(move || {
-            match take_text_out(&body, &texts) {
-                Some(forwarded) => {
-                    // Giving back the pages of tens of megabytes takes milliseconds: not while the
-                    // editor waits for the first diagnostics.
-                    tokio::task::spawn_blocking(move || drop(body));
-                    (Some(forwarded), None, Vec::new())
-                }
-                None => (None, Some(check_body(&body)), body),
+    let (body, checked) = if length >= LARGE_MESSAGE_BYTES {
+        // A didOpen of megabytes has its text read into the rope while it arrives; what goes on to
+        // the framework is then a small message written here. Any other large message (a whole
+        // text in a didChange) is checked off the async threads too.
+        match input
+            .read_large_body(length, Arc::clone(open_texts))
+            .await
+            .ok()?
+        {
+            LargeBody::TextTaken(forwarded) => {
+                return Some(Some(forwarded));
             }
-        })
-        .await
-        .ok()?;
-        if let Some(forwarded) = taken_apart {
-            return Some(Some(forwarded));
+            LargeBody::Other(body, check) => (body, Some(check)),
         }
-        body = original;
-        checked = check;
-    }
+    } else {
+        (input.read_body(length).await.ok()?, None)
+    };
     match checked.unwrap_or_else(|| check_body(&body)) {
         Ok(MessageKind::Initialize) => {
             // The framework would run an `initialize` that arrives before the first is answered

@@ -14,10 +14,11 @@
 //! - `outgoing.rs`: all output; the server's own notifications serialized straight to text.
 //! - `log.rs`: logging and slow-handler reports; `memory.rs`: the allocator's options.
 //! - `framing.rs`: drops malformed messages before they reach the framework's reader.
-//! - `open_texts.rs`: the texts of large `didOpen` messages, which the guard reads itself;
-//!   `json_string.rs` unescapes them into ropes.
+//! - `arriving_open.rs`: a large `didOpen` read while it arrives; `open_texts.rs`: the texts of large
+//!   `didOpen` messages, which the guard reads itself; `json_string.rs` unescapes them into ropes.
 //! - `stdio.rs`: the process's stdin and stdout (pipe buffers, the raw output).
 
+mod arriving_open;
 mod code_action;
 mod completion;
 mod convert;

@@ -46,6 +46,11 @@ impl OpenTexts {
             .position(|(other, other_version, _)| other == uri && *other_version == version)?;
         waiting.remove(index).map(|(_, _, text)| text)
     }
+
+    #[cfg(test)]
+    pub fn waiting_count(&self) -> usize {
+        lock(&self.waiting).len()
+    }
 }
 
 /// A `didOpen` notification as the protocol defines it, its text left as written.
@@ -86,12 +91,44 @@ pub fn take_text_out(body: &[u8], texts: &OpenTexts) -> Option<Vec<u8>> {
         return None;
     }
     let message: DidOpenMessage = serde_json::from_slice(body).ok()?;
-    if message.method != "textDocument/didOpen" || message.id.is_some() {
+    if !is_did_open_notification(&message) {
+        return None;
+    }
+    // A text that is not a string is left to the framework, which refuses the message.
+    let text = rope_from_literal(message.params.text_document.text.get())?;
+    pass_on(message, text, texts)
+}
+
+/// The `didOpen` whose text was read while it arrived (`arriving_open.rs`): `without_text` is the
+/// message with an empty string in place of the text literal, which started at byte `text_at`.
+/// Returns the message to pass on and keeps `text`, when `without_text` is a `didOpen` notification
+/// and its text is the literal that was read; otherwise `None`, and nothing is kept.
+pub fn take_read_text(
+    without_text: &[u8],
+    text_at: usize,
+    text: Rope,
+    texts: &OpenTexts,
+) -> Option<Vec<u8>> {
+    let message: DidOpenMessage = serde_json::from_slice(without_text).ok()?;
+    let literal = message.params.text_document.text.get();
+    let literal_at = literal.as_ptr() as usize - without_text.as_ptr() as usize;
+    if literal != "\"\"" || literal_at != text_at {
+        return None;
+    }
+    pass_on(message, text, texts)
+}
+
+fn is_did_open_notification(message: &DidOpenMessage) -> bool {
+    message.method == "textDocument/didOpen" && message.id.is_none()
+}
+
+/// Keeps the text of a `didOpen` notification and returns the message to pass on; `None` for a
+/// message of another method or a request.
+fn pass_on(message: DidOpenMessage, text: Rope, texts: &OpenTexts) -> Option<Vec<u8>> {
+    if !is_did_open_notification(&message) {
         return None;
     }
     let document = message.params.text_document;
-    // A text that is not a string is left to the framework, which refuses the message.
-    let text = rope_from_literal(document.text.get())?;
     let params = DidOpenTextDocumentParams {
         text_document: TextDocumentItem {
             uri: document.uri,
