@@ -415,6 +415,30 @@ fn a_program_analysed_on_two_threads_reads_each_line_once_when_the_middle_is_gue
 }
 
 #[test]
+fn facts_of_the_whole_document_read_on_two_threads_are_those_of_one() {
+    // A G-function macro defined in the second half is used in the first (an unknown G function
+    // without the definition), and a `PROC` header in the second half
+    // makes the whole program a subprogram: the two halves are read on different threads, so each
+    // half's facts must reach the other's analysis.
+    let lines = 40 * CHECKPOINT_INTERVAL;
+    let late = 30 * CHECKPOINT_INTERVAL;
+    let with_both = |index: usize| match index {
+        _ if index == late => "DEFINE G300 AS G0".to_string(),
+        _ if index == late + 1 => "PROC LATE".to_string(),
+        _ if index % 100 == 7 => format!("G300 X{} Y1", index % 11),
+        _ => format!("N{index} G1 X{}.5 Y{}", index % 97, index % 13),
+    };
+    let text = program(&["G90 G71 F100"], with_both, lines);
+    check_parallel_analysis(&text, "late macro and PROC header");
+    let macro_only = |index: usize| match index {
+        _ if index == late + 1 => "N1 G1 X1".to_string(),
+        _ => with_both(index),
+    };
+    let text = program(&["G90 G71 F100"], macro_only, lines);
+    check_parallel_analysis(&text, "late macro");
+}
+
+#[test]
 fn an_incremental_program_analysed_on_two_threads_carries_the_shift_into_the_second_half() {
     let lines = 40 * CHECKPOINT_INTERVAL;
     let text = program(

@@ -774,22 +774,40 @@ impl DocumentAnalysis {
 
     /// Reads the whole-document facts (macros, `PROC` headers) and gives the state before line 0.
     fn prepare_from_scratch(&mut self, source: &dyn LineSource) -> Checkpoint {
-        self.unread = None;
-        self.line_flags = Vec::with_capacity(source.line_count());
-        self.context = SyntaxContext::new(&self.config);
-        let mut has_proc_header = false;
-        source.for_each_line(0, &mut |_, line| {
-            let flags = line_flags_of(line);
-            if flags & DEFINES_MACRO != 0 {
-                if let Some(name) = macro_defined_by(line) {
-                    self.context.add_macro(name);
-                }
-            }
-            has_proc_header |= flags & PROC_HEADER != 0;
-            self.line_flags.push(flags);
-            true
+        let facts = DocumentFacts::read(source, 0, usize::MAX);
+        self.start_from_facts(facts)
+    }
+
+    /// [`DocumentAnalysis::prepare_from_scratch`] with the lines from `middle` on read on a second
+    /// thread from `helper_source` (the same text).
+    fn prepare_from_scratch_in_parallel(
+        &mut self,
+        source: &dyn LineSource,
+        helper_source: &mut (dyn LineSource + Send),
+        middle: usize,
+    ) -> Checkpoint {
+        let (mut facts, second) = std::thread::scope(|scope| {
+            let second =
+                scope.spawn(move || DocumentFacts::read(&*helper_source, middle, usize::MAX));
+            (DocumentFacts::read(source, 0, middle), second.join())
         });
-        self.subprogram = self.kind == ProgramKind::Subprogram || has_proc_header;
+        match second {
+            Ok(second) => facts.extend(second),
+            // The thread failed (a bug): the rest is read here instead.
+            Err(_) => facts.extend(DocumentFacts::read(source, middle, usize::MAX)),
+        }
+        self.start_from_facts(facts)
+    }
+
+    /// Takes the facts of the whole document and gives the state before line 0.
+    fn start_from_facts(&mut self, facts: DocumentFacts) -> Checkpoint {
+        self.unread = None;
+        self.line_flags = facts.line_flags;
+        self.context = SyntaxContext::new(&self.config);
+        for name in &facts.macros {
+            self.context.add_macro(name);
+        }
+        self.subprogram = self.kind == ProgramKind::Subprogram || facts.has_proc_header;
         let mut engine = Engine::new(&self.config);
         if self.subprogram {
             engine.assume_inherited_state();
@@ -818,7 +836,7 @@ impl DocumentAnalysis {
             self.recompute(source);
             return;
         }
-        let start = self.prepare_from_scratch(source);
+        let start = self.prepare_from_scratch_in_parallel(source, &mut *helper_source, middle);
         let mut position_reads = vec![READS_ALL; line_count];
         let (first_reads, second_reads) = position_reads.split_at_mut(middle);
         let this = &*self;
@@ -1193,6 +1211,47 @@ fn move_findings(findings: &mut Vec<Diagnostic>, line: usize, into: &mut Vec<Lin
             .drain(..)
             .map(|diagnostic| LineDiagnostic { line, diagnostic }),
     );
+}
+
+/// What a document's lines say of the whole document: the flags of each line, the macros defined
+/// and whether a `PROC` header makes it a subprogram.
+struct DocumentFacts {
+    line_flags: Vec<u8>,
+    macros: Vec<String>,
+    has_proc_header: bool,
+}
+
+impl DocumentFacts {
+    /// The facts of the lines `start..end` (as far as there are lines).
+    fn read(source: &dyn LineSource, start: usize, end: usize) -> DocumentFacts {
+        let mut facts = DocumentFacts {
+            line_flags: Vec::with_capacity(source.line_count().min(end).saturating_sub(start)),
+            macros: Vec::new(),
+            has_proc_header: false,
+        };
+        source.for_each_line(start, &mut |index, line| {
+            if index >= end {
+                return false;
+            }
+            let flags = line_flags_of(line);
+            if flags & DEFINES_MACRO != 0 {
+                if let Some(name) = macro_defined_by(line) {
+                    facts.macros.push(name.to_string());
+                }
+            }
+            facts.has_proc_header |= flags & PROC_HEADER != 0;
+            facts.line_flags.push(flags);
+            true
+        });
+        facts
+    }
+
+    /// Adds the facts of the lines that follow.
+    fn extend(&mut self, later: DocumentFacts) {
+        self.line_flags.extend(later.line_flags);
+        self.macros.extend(later.macros);
+        self.has_proc_header |= later.has_proc_header;
+    }
 }
 
 fn line_flags_of(line: &str) -> u8 {
