@@ -562,6 +562,70 @@ fn a_50_mb_did_open_is_analysed_and_the_other_documents_stay_served() {
 }
 
 #[test]
+fn damaged_large_messages_cost_only_themselves() {
+    // Large messages are read while they arrive (the text of a didOpen goes into its rope at once):
+    // a wrong length, a text that is not a JSON string or a body that is no JSON must still cost
+    // only that message, and a good large didOpen after them is opened.
+    let mut server = serving_server();
+    let (line, character) = position_of(&seed_text(), "Z=IC(-32)");
+    let uri = "file:///nonexistent/large.mpf";
+    let text = "N10 G1 X1 Y2 F100 ; \"umlaut\" \u{e4}\r\n".repeat(20_000);
+    let did_open = |version: i64, text: &str| {
+        json!({"jsonrpc": "2.0", "method": "textDocument/didOpen", "params": {"textDocument": {"uri": uri, "languageId": "sinumerik", "version": version, "text": text}}}).to_string().into_bytes()
+    };
+    let with_length = |body: &[u8], length: usize| {
+        let mut message = format!("Content-Length: {length}\r\n\r\n").into_bytes();
+        message.extend_from_slice(body);
+        message
+    };
+    let body = did_open(1, &text);
+    let mut raw_line_break = body.clone();
+    let escape = memchr::memmem::find(&raw_line_break, b"\\r\\n").unwrap();
+    raw_line_break.splice(escape..escape + 4, *b"\r\n");
+    let cases = [
+        (
+            "a large didOpen whose length is too long",
+            with_length(&body, body.len() + 40),
+        ),
+        (
+            "a large didOpen whose length is too short",
+            with_length(&body, body.len() - 3),
+        ),
+        (
+            "a large didOpen with a raw line break in its text",
+            with_length(&raw_line_break, raw_line_break.len()),
+        ),
+        (
+            "a large body that is no JSON",
+            frame("[".repeat(400_000).as_bytes()),
+        ),
+    ];
+    for (index, (what, message)) in cases.iter().enumerate() {
+        server.write_raw(message);
+        let id = 300 + index as i64;
+        server.write_raw(&hover_request(id, line, character));
+        let answer = server.response(id).expect(what);
+        assert!(
+            answer["contents"]["value"]
+                .as_str()
+                .unwrap()
+                .contains("**58.000**"),
+            "{what}: {answer}"
+        );
+    }
+    // None of the damaged didOpen messages opened the document.
+    let unopened = server.document_text(uri);
+    assert!(unopened.is_err(), "{unopened:?}");
+    let good = did_open(2, &text);
+    server.write_raw(&frame(&good));
+    let diagnostics = server.diagnostics(uri, 2);
+    assert_eq!(published(&diagnostics), fresh(&text));
+    assert_eq!(server.document_text(uri), Ok((2, text.clone())));
+    assert_still_serves(&mut server, "damaged large messages");
+    assert_eq!(server.shutdown(), Some(0));
+}
+
+#[test]
 fn exit_without_shutdown_exits_with_1_and_after_shutdown_with_0() {
     let mut server = serving_server();
     server.notify("exit", Value::Null);
