@@ -6,6 +6,7 @@
 
 use crate::lsp::arriving_open::{Arrived, ArrivingMessage};
 use crate::lsp::log;
+use crate::lsp::memory;
 use crate::lsp::open_texts::{take_text_out, OpenTexts, LARGE_MESSAGE_BYTES};
 use crate::lsp::outgoing::OutgoingSender;
 use serde::de::IgnoredAny;
@@ -160,14 +161,18 @@ impl<R: AsyncRead + Unpin> Input<R> {
         self.consume_put_back(from_put_back);
         while received < length {
             let wanted = (length - received).min(ARRIVING_PIECE_BYTES);
-            let mut piece = Vec::with_capacity(wanted);
-            if (&mut self.reader)
-                .take(wanted as u64)
-                .read_buf(&mut piece)
-                .await?
-                == 0
-            {
-                return Err(std::io::ErrorKind::UnexpectedEof.into());
+            // Each piece is filled before it is handed on: its pages are all mapped already.
+            let mut piece = memory::populated_buffer(wanted);
+            while piece.len() < wanted {
+                let missing = (wanted - piece.len()) as u64;
+                if (&mut self.reader)
+                    .take(missing)
+                    .read_buf(&mut piece)
+                    .await?
+                    == 0
+                {
+                    return Err(std::io::ErrorKind::UnexpectedEof.into());
+                }
             }
             received += piece.len();
             let _ = pieces.send(piece);
