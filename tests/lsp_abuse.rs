@@ -51,6 +51,22 @@ fn hover_request(id: i64, line: u32, character: u32) -> Vec<u8> {
     )
 }
 
+/// Writes the damaged `message` and then a hover request with `id` on the seed example, which must be
+/// answered with the resolved value, whatever the damaged message swallowed of it.
+fn assert_next_request_answered(server: &mut RawServer, message: &[u8], id: i64, what: &str) {
+    let (line, character) = position_of(&seed_text(), "Z=IC(-32)");
+    server.write_raw(message);
+    server.write_raw(&hover_request(id, line, character));
+    let answer = server.response(id).expect(what);
+    assert!(
+        answer["contents"]["value"]
+            .as_str()
+            .unwrap()
+            .contains("**58.000**"),
+        "{what}: {answer}"
+    );
+}
+
 /// An LSP change: start and end as (line, UTF-16 column), and the new text.
 type Change = ((u32, u32), (u32, u32), &'static str);
 
@@ -193,18 +209,7 @@ fn a_wrong_content_length_costs_only_its_own_message() {
         ("a length of 5 GB", with_length("5000000000")),
     ];
     for (index, (what, message)) in cases.iter().enumerate() {
-        server.write_raw(message);
-        // The next request must be answered, whatever the damaged message swallowed of it.
-        let id = 200 + index as i64;
-        server.write_raw(&hover_request(id, line, character));
-        let answer = server.response(id).expect(what);
-        assert!(
-            answer["contents"]["value"]
-                .as_str()
-                .unwrap()
-                .contains("**58.000**"),
-            "{what}: {answer}"
-        );
+        assert_next_request_answered(&mut server, message, 200 + index as i64, what);
         assert_still_serves(&mut server, what);
     }
     // The damaged request itself was never answered.
@@ -567,7 +572,6 @@ fn damaged_large_messages_cost_only_themselves() {
     // a wrong length, a text that is not a JSON string or a body that is no JSON must still cost
     // only that message, and a good large didOpen after them is opened.
     let mut server = serving_server();
-    let (line, character) = position_of(&seed_text(), "Z=IC(-32)");
     let uri = "file:///nonexistent/large.mpf";
     let text = "N10 G1 X1 Y2 F100 ; \"umlaut\" \u{e4}\r\n".repeat(20_000);
     let did_open = |version: i64, text: &str| {
@@ -601,17 +605,7 @@ fn damaged_large_messages_cost_only_themselves() {
         ),
     ];
     for (index, (what, message)) in cases.iter().enumerate() {
-        server.write_raw(message);
-        let id = 300 + index as i64;
-        server.write_raw(&hover_request(id, line, character));
-        let answer = server.response(id).expect(what);
-        assert!(
-            answer["contents"]["value"]
-                .as_str()
-                .unwrap()
-                .contains("**58.000**"),
-            "{what}: {answer}"
-        );
+        assert_next_request_answered(&mut server, message, 300 + index as i64, what);
     }
     // None of the damaged didOpen messages opened the document.
     let unopened = server.document_text(uri);
