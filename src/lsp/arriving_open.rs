@@ -182,12 +182,6 @@ impl ArrivingMessage {
     }
 }
 
-impl Default for ArrivingMessage {
-    fn default() -> ArrivingMessage {
-        ArrivingMessage::new()
-    }
-}
-
 /// Looks at `body[from..]` for the opening quote of a `"text"` key's string value; `search` holds
 /// the state at `from` and is left as it is at the end.
 fn find_text_start(body: &[u8], from: usize, search: &mut KeySearch) -> Option<usize> {

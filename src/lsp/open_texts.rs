@@ -1,8 +1,9 @@
 //! The texts of large `didOpen` messages, taken out by the input guard. The framework would read such
 //! a message into a JSON tree and then into typed parameters, keeping its read buffer as large as the
-//! message afterwards; the guard instead reads it once, turns its text straight into the rope the
-//! document keeps (`json_string.rs`), keeps that here and passes on the message with an empty text,
-//! which `didOpen` fills in again from here.
+//! message afterwards; the guard instead turns its text straight into the rope the document keeps,
+//! while the message arrives (`arriving_open.rs`) or, failing that, from the whole body once
+//! (`json_string.rs`), keeps that here and passes on the message with an empty text, which `didOpen`
+//! fills in again from here.
 
 use crate::lsp::documents::lock;
 use crate::lsp::json_string::rope_from_literal;
