@@ -176,7 +176,11 @@ fn call_findings(
         if is_macro {
             continue;
         }
-        if !known_program && index.is_complete() && !is_control_cycle(&call.name) {
+        if !known_program
+            && !call.reads_as_address_word
+            && index.is_complete()
+            && !is_control_cycle(&call.name)
+        {
             push(
                 out,
                 call.line,

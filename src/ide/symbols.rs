@@ -6,7 +6,7 @@
 
 use crate::analysis::document::LineSource;
 use crate::config::MachineConfig;
-use crate::diagnostics::Span;
+use crate::diagnostics::{Code, Span};
 pub use crate::ide::block_numbers::{BlockNumberEntry, BlockNumbers};
 use crate::ide::names::{identifier_prefix, is_type_name, text_of, upper};
 use crate::syntax::ast::{
@@ -120,6 +120,9 @@ pub struct CallSite {
     pub argument_count: Option<usize>,
     /// The span of the whole call statement.
     pub statement_span: Span,
+    /// The parser reported the name as an address word that lacks its `=` (S120: `XR1`, `CR10`,
+    /// `ZAC(17)`). Saying again that no program has that name would only repeat the finding.
+    pub reads_as_address_word: bool,
 }
 
 /// Where a jump goes.
@@ -235,7 +238,15 @@ impl SymbolTable {
         let mut comment_lines: Vec<(usize, CommentLine)> = Vec::new();
         source.for_each_line(0, &mut |line_index, line| {
             parser.parse(line, &context, &mut block, &mut diagnostics);
+            let calls_before = table.calls.len();
             table.add_block(line_index, line, &block, &mut lexemes);
+            for call in &mut table.calls[calls_before..] {
+                call.reads_as_address_word = diagnostics.iter().any(|diagnostic| {
+                    diagnostic.code == Code::NameReadAsCall
+                        && diagnostic.span.start() < call.span.end()
+                        && call.span.start() < diagnostic.span.end()
+                });
+            }
             if let Some(class) = classify_comment_line(line, &block) {
                 comment_lines.push((line_index, class));
             }
@@ -388,6 +399,7 @@ impl SymbolTable {
                         span: word.span,
                         argument_count: None,
                         statement_span: word.span,
+                        reads_as_address_word: false,
                     });
                 }
                 _ => {}
@@ -497,6 +509,7 @@ impl SymbolTable {
                     span: name_span,
                     argument_count,
                     statement_span: *span,
+                    reads_as_address_word: false,
                 });
             }
             Statement::Definition { names, span } => {
