@@ -93,8 +93,20 @@ fn place(location: &Value) -> (String, u64, u64) {
 }
 
 /// A server with the workspace folder, MAIN.MPF open, the indexing finished; returns the progress
-/// notifications seen.
+/// notifications seen. The client renames files that workspace edits ask it to.
 async fn start(workspace: &Workspace) -> (TestClient, Vec<Value>) {
+    start_with_edits(
+        workspace,
+        json!({"documentChanges": true, "resourceOperations": ["rename"]}),
+    )
+    .await
+}
+
+/// [`start`] with the client's `workspaceEdit` capabilities.
+async fn start_with_edits(
+    workspace: &Workspace,
+    workspace_edit: Value,
+) -> (TestClient, Vec<Value>) {
     let mut client = TestClient::in_process();
     let folder_uri = file_uri(&workspace.folder);
     client
@@ -108,7 +120,7 @@ async fn start(workspace: &Workspace) -> (TestClient, Vec<Value>) {
                     "window": {"workDoneProgress": true},
                     "workspace": {
                         "didChangeWatchedFiles": {"dynamicRegistration": true},
-                        "workspaceEdit": {"documentChanges": true}
+                        "workspaceEdit": workspace_edit
                     },
                     "textDocument": {"completion": {"completionItem": {"snippetSupport": true}}}
                 }
@@ -304,13 +316,19 @@ async fn rename_edits_every_occurrence_and_refuses_bad_names() {
     assert!(renamed.contains("\nFINISH:\n"), "{renamed}");
     assert!(!renamed.contains("END_PART"), "{renamed}");
 
-    // The PROC is renamed in its own file (not open: no version) and at the call.
+    // The PROC is renamed in its own file (not open: no version) and at the call, and its file
+    // after them: the control finds the program by its file name.
     let mut params = workspace.at("call");
     params["newName"] = json!("PART3");
-    let edit = client.request("textDocument/rename", params).await.unwrap();
-    let mut edited: Vec<(String, Value)> = edit["documentChanges"]
-        .as_array()
-        .unwrap()
+    let edit = client
+        .request("textDocument/rename", params.clone())
+        .await
+        .unwrap();
+    let changes = edit["documentChanges"].as_array().unwrap();
+    let (renames, text_edits): (Vec<&Value>, Vec<&Value>) = changes
+        .iter()
+        .partition(|change| change["kind"] == "rename");
+    let mut edited: Vec<(String, Value)> = text_edits
         .iter()
         .map(|change| {
             let uri = change["textDocument"]["uri"].as_str().unwrap();
@@ -328,6 +346,28 @@ async fn rename_edits_every_occurrence_and_refuses_bad_names() {
             ("PART2.SPF".to_string(), Value::Null)
         ]
     );
+    assert_eq!(renames.len(), 1, "{edit}");
+    assert_eq!(renames[0]["oldUri"], workspace.uri("PART2.SPF").as_str());
+    assert_eq!(renames[0]["newUri"], workspace.uri("PART3.SPF").as_str());
+    assert_eq!(renames[0]["options"]["overwrite"], false);
+    assert_eq!(
+        changes.last(),
+        Some(renames[0]),
+        "the file is renamed after its edits"
+    );
+
+    // A file of the new name that the index does not know yet is not overwritten.
+    std::fs::write(workspace.folder.join("PART3.SPF"), "M17\n").unwrap();
+    let error = client
+        .request("textDocument/rename", params)
+        .await
+        .expect_err("the rename is refused");
+    let message = error["message"].as_str().unwrap();
+    assert!(
+        message.contains("PART3.SPF") && message.contains("exists"),
+        "{message}"
+    );
+    std::fs::remove_file(workspace.folder.join("PART3.SPF")).unwrap();
 
     for (new_name, reason) in [("G1", "G"), ("IF", "keyword"), ("X", "axis")] {
         let mut params = workspace.at("labelDefinition");
@@ -354,6 +394,27 @@ async fn rename_edits_every_occurrence_and_refuses_bad_names() {
         error["message"].as_str().unwrap().contains("PART2"),
         "{error}"
     );
+    client.shutdown().await;
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn a_program_is_not_renamed_by_a_client_that_cannot_rename_its_file() {
+    let workspace = Workspace::write("rename_without_files");
+    let (mut client, _) = start_with_edits(&workspace, json!({"documentChanges": true})).await;
+    let mut params = workspace.at("call");
+    params["newName"] = json!("PART3");
+    let error = client
+        .request("textDocument/rename", params)
+        .await
+        .expect_err("renaming the calls alone would break them");
+    assert_eq!(error["code"], -32803, "{error}");
+    let message = error["message"].as_str().unwrap();
+    assert!(message.contains("PART2.SPF"), "{message}");
+    // Other names are renamed as before.
+    let mut params = workspace.at("labelDefinition");
+    params["newName"] = json!("FINISH");
+    let edit = client.request("textDocument/rename", params).await.unwrap();
+    assert_eq!(edit["documentChanges"].as_array().unwrap().len(), 1);
     client.shutdown().await;
 }
 

@@ -69,6 +69,43 @@ pub fn program_name_and_kind(file_name: &str) -> (String, FileKind) {
     (stem, kind)
 }
 
+/// The file name (without folder) that makes the file of `file_name` hold the program `program`, in
+/// the same style: `PART2.SPF` becomes `PART3.SPF`, `part2.spf` becomes `part3.spf` and the control's
+/// own `_N_PART2_SPF` becomes `_N_PART3_SPF`. The control finds a program by its file name, so a
+/// renamed program needs its file renamed too.
+pub fn file_name_for_program(file_name: &str, program: &str) -> String {
+    let base = file_name.rsplit(['/', '\\']).next().unwrap_or(file_name);
+    let (stem, extension) = match base.rfind('.') {
+        Some(dot) if dot > 0 => (&base[..dot], &base[dot..]),
+        _ => (base, ""),
+    };
+    let upper_stem = stem.to_ascii_uppercase();
+    let control_style = upper_stem.starts_with("_N_")
+        && program_name_and_kind(base).0 != upper_stem
+        && stem.rfind('_').is_some_and(|underscore| underscore > 2);
+    if control_style {
+        // `_N_` + name + `_` + type, as the control writes it: only the name changes.
+        let underscore = stem.rfind('_').unwrap_or(stem.len());
+        let prefix = &stem[..3];
+        let name = if stem[3..underscore]
+            .bytes()
+            .any(|byte| byte.is_ascii_uppercase())
+        {
+            program.to_ascii_uppercase()
+        } else {
+            program.to_ascii_lowercase()
+        };
+        return format!("{prefix}{name}{}{extension}", &stem[underscore..]);
+    }
+    // A stem written in lower case keeps its case; any other is written as the control shows names.
+    let name = if stem.bytes().any(|byte| byte.is_ascii_uppercase()) {
+        program.to_ascii_uppercase()
+    } else {
+        program.to_ascii_lowercase()
+    };
+    format!("{name}{extension}")
+}
+
 /// The symbol tables of many documents and the cross-document lookups.
 #[derive(Debug, Clone, Default)]
 pub struct WorkspaceIndex {
@@ -218,6 +255,29 @@ impl WorkspaceIndex {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_renamed_program_s_file_keeps_its_style_and_names_the_new_program() {
+        for (file, expected) in [
+            ("PART2.SPF", "PART3.SPF"),
+            ("part2.spf", "part3.spf"),
+            ("Part2.Spf", "PART3.Spf"),
+            ("_N_PART2_SPF", "_N_PART3_SPF"),
+            ("_N_PART2_SPF.txt", "_N_PART3_SPF.txt"),
+            ("/a/b/MAIN.MPF", "PART3.MPF"),
+            ("C:\\x\\_n_part2_spf", "_n_part3_spf"),
+            ("PART2", "PART3"),
+        ] {
+            let renamed = file_name_for_program(file, "Part3");
+            assert_eq!(renamed, expected, "{file}");
+            // The new file holds the new program, of the same kind.
+            assert_eq!(
+                program_name_and_kind(&renamed),
+                ("PART3".to_string(), program_name_and_kind(file).1),
+                "{file}"
+            );
+        }
+    }
 
     #[test]
     fn program_names_come_from_stems_and_control_file_names() {

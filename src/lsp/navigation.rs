@@ -10,7 +10,7 @@ use crate::lsp::convert::{character_to_byte, span_to_range, PositionEncoding};
 use crate::lsp::documents::Analysed;
 use crate::lsp::server::{file_path, Shared};
 use crate::lsp::workspace::{update_all_open, IndexState};
-use crate::lsp::workspace_edit::{workspace_edit, DocumentEdits};
+use crate::lsp::workspace_edit::{workspace_edit, workspace_edit_with_renames, DocumentEdits};
 use std::collections::HashMap;
 use tower_lsp_server::jsonrpc::{Error, ErrorCode};
 use tower_lsp_server::ls_types::{
@@ -287,6 +287,9 @@ pub fn rename(
         new_name,
     )
     .map_err(rename_error)?;
+    // The control finds a program by its file name: the files named after the renamed program are
+    // renamed in the same edit, or the rename is refused.
+    let file_renames = file_renames(&state, &edit.renamed_programs, shared.renames_files())?;
     let mut texts = LineTexts::new(shared, &state, encoding, Some((&id, analysed)));
     let mut documents = Vec::new();
     for (document, edits) in &edit.changes {
@@ -306,12 +309,55 @@ pub fn rename(
             edits: text_edits,
         });
     }
-    for (document, new_program) in &edit.renamed_programs {
-        shared.warn(format!(
-            "{document} is named after the renamed program: rename the file to {new_program} too, or the control does not find it"
-        ));
+    if file_renames.is_empty() {
+        Ok(workspace_edit(documents, shared.versioned_edits()))
+    } else {
+        Ok(workspace_edit_with_renames(documents, file_renames))
     }
-    Ok(workspace_edit(documents, shared.versioned_edits()))
+}
+
+/// The file renames that go with a program rename, as (old, new) URIs: each file named after the
+/// program gets the new name in the same style (`ide::workspace::file_name_for_program`). Refused when
+/// the client cannot rename files or a file of the new name exists already.
+fn file_renames(
+    state: &IndexState,
+    renamed_programs: &[(DocumentId, String)],
+    client_renames_files: bool,
+) -> Result<Vec<(Uri, Uri)>, Error> {
+    let mut renames = Vec::new();
+    for (document, new_program) in renamed_programs {
+        let Some(old_uri) = state.uri(document) else {
+            continue;
+        };
+        let refused = |reason: String| rename_error(RenameError::Refused(reason));
+        let Some(old_path) = file_path(old_uri) else {
+            return Err(refused(format!(
+                "`{new_program}` would need {} renamed, which is not a file",
+                old_uri.as_str()
+            )));
+        };
+        let old_name = old_path
+            .file_name()
+            .map(|name| name.to_string_lossy().into_owned())
+            .unwrap_or_default();
+        if !client_renames_files {
+            return Err(refused(format!(
+                "the control finds the program by its file name, so {old_name} must be renamed too, and this editor does not let the language server rename files: rename the file first, then the program"
+            )));
+        }
+        let new_name = crate::ide::workspace::file_name_for_program(&old_name, new_program);
+        let new_path = old_path.with_file_name(&new_name);
+        if new_path.exists() {
+            return Err(refused(format!(
+                "{old_name} would be renamed to {new_name}, which exists already"
+            )));
+        }
+        let Some(new_uri) = Uri::from_file_path(&new_path) else {
+            continue;
+        };
+        renames.push((old_uri.clone(), new_uri));
+    }
+    Ok(renames)
 }
 
 /// `workspace/symbol`: programs, labels, global variables and macros whose name contains the query.

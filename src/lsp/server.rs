@@ -46,6 +46,8 @@ struct ClientInfo {
     refreshes_inlay_hints: bool,
     /// Whether workspace edits may carry document versions (`documentChanges`).
     versioned_edits: bool,
+    /// Whether workspace edits may rename files (`resourceOperations` has `rename`).
+    renames_files: bool,
     /// Whether the client shows `$/progress` for a token the server creates.
     work_done_progress: bool,
     /// Whether `workspace/didChangeWatchedFiles` can be registered dynamically.
@@ -271,6 +273,11 @@ impl Shared {
         lock(&self.info).versioned_edits
     }
 
+    /// Whether the client renames files that a workspace edit asks it to rename.
+    pub(super) fn renames_files(&self) -> bool {
+        lock(&self.info).renames_files
+    }
+
     pub(super) fn warn(&self, message: String) {
         self.outgoing.log_warning(message);
     }
@@ -412,6 +419,11 @@ impl LanguageServer for Backend {
                 .and_then(|workspace| workspace.workspace_edit.as_ref())
                 .and_then(|edit| edit.document_changes)
                 .unwrap_or(false),
+            renames_files: workspace
+                .and_then(|workspace| workspace.workspace_edit.as_ref())
+                .filter(|edit| edit.document_changes == Some(true))
+                .and_then(|edit| edit.resource_operations.as_ref())
+                .is_some_and(|operations| operations.contains(&ResourceOperationKind::Rename)),
             work_done_progress: params
                 .capabilities
                 .window

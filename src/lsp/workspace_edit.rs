@@ -7,8 +7,8 @@ use crate::ide::LineEdit;
 use crate::lsp::convert::{span_to_range, PositionEncoding};
 use std::collections::HashMap;
 use tower_lsp_server::ls_types::{
-    DocumentChanges, OneOf, OptionalVersionedTextDocumentIdentifier, TextDocumentEdit, TextEdit,
-    Uri, WorkspaceEdit,
+    DocumentChangeOperation, DocumentChanges, OneOf, OptionalVersionedTextDocumentIdentifier,
+    RenameFile, RenameFileOptions, ResourceOp, TextDocumentEdit, TextEdit, Uri, WorkspaceEdit,
 };
 
 /// The edits of one document: its URI, the version they were computed for (`None` for a file that
@@ -19,19 +19,48 @@ pub struct DocumentEdits {
     pub edits: Vec<TextEdit>,
 }
 
+/// The edits of one document with its version.
+fn text_document_edit(document: DocumentEdits) -> TextDocumentEdit {
+    TextDocumentEdit {
+        text_document: OptionalVersionedTextDocumentIdentifier {
+            uri: document.uri,
+            version: document.version,
+        },
+        edits: document.edits.into_iter().map(OneOf::Left).collect(),
+    }
+}
+
+/// One workspace edit holding the versioned edits of every document, then the renames of files as
+/// (old, new) URIs: the client applies the operations in order, so each file is edited under its old
+/// name first. A file is never overwritten.
+pub fn workspace_edit_with_renames(
+    documents: Vec<DocumentEdits>,
+    renames: Vec<(Uri, Uri)>,
+) -> WorkspaceEdit {
+    let edits = documents
+        .into_iter()
+        .map(|document| DocumentChangeOperation::Edit(text_document_edit(document)));
+    let renames = renames.into_iter().map(|(old_uri, new_uri)| {
+        DocumentChangeOperation::Op(ResourceOp::Rename(RenameFile {
+            old_uri,
+            new_uri,
+            options: Some(RenameFileOptions {
+                overwrite: Some(false),
+                ignore_if_exists: Some(false),
+            }),
+            annotation_id: None,
+        }))
+    });
+    WorkspaceEdit {
+        document_changes: Some(DocumentChanges::Operations(edits.chain(renames).collect())),
+        ..WorkspaceEdit::default()
+    }
+}
+
 /// One workspace edit holding the edits of every document.
 pub fn workspace_edit(documents: Vec<DocumentEdits>, versioned: bool) -> WorkspaceEdit {
     if versioned {
-        let edits = documents
-            .into_iter()
-            .map(|document| TextDocumentEdit {
-                text_document: OptionalVersionedTextDocumentIdentifier {
-                    uri: document.uri,
-                    version: document.version,
-                },
-                edits: document.edits.into_iter().map(OneOf::Left).collect(),
-            })
-            .collect();
+        let edits = documents.into_iter().map(text_document_edit).collect();
         WorkspaceEdit {
             document_changes: Some(DocumentChanges::Edits(edits)),
             ..WorkspaceEdit::default()
