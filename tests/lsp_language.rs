@@ -207,6 +207,25 @@ async fn the_workspace_is_indexed_with_progress_and_watched() {
         found.contains(&("END_PART".to_string(), workspace.mark("labelDefinition"))),
         "{found:?}"
     );
+
+    // A changed sinumerik.toml can change how every file reads (its axes): the files on disk are
+    // indexed again.
+    std::fs::write(workspace.folder.join("sinumerik.toml"), "").unwrap();
+    client
+        .notify(
+            "workspace/didChangeWatchedFiles",
+            json!({"changes": [{"uri": workspace.uri("sinumerik.toml"), "type": 1}]}),
+        )
+        .await;
+    let again = tokio::time::timeout(
+        std::time::Duration::from_secs(30),
+        client.notification("$/progress", |params| {
+            &params["token"] != token && params["value"]["kind"] == "end"
+        }),
+    )
+    .await
+    .expect("the workspace is indexed again");
+    assert_eq!(again["value"]["message"], "2 files indexed");
     client.shutdown().await;
 }
 

@@ -233,7 +233,7 @@ impl Shared {
     }
 
     /// Starts indexing the workspace again (at start, and when folders or settings change).
-    fn reindex(self: &Arc<Self>) {
+    pub(super) fn reindex(self: &Arc<Self>) {
         let roots = self.index_roots();
         if roots.is_empty() {
             return;

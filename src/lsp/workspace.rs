@@ -550,7 +550,8 @@ fn collect_program_files(folder: &Path, files: &mut Vec<PathBuf>, cancel: &Atomi
 }
 
 /// `workspace/didChangeWatchedFiles`: a changed `sinumerik.toml` gives the open documents their
-/// configuration again; changed program files are read into the index (deleted ones leave it).
+/// configuration again and has the workspace indexed again (the configuration's axes decide how a
+/// file reads); changed program files are read into the index (deleted ones leave it).
 pub fn files_changed(shared: &Arc<Shared>, changes: Vec<FileEvent>) {
     let mut program_changes = Vec::new();
     let mut config_changed = false;
@@ -571,6 +572,9 @@ pub fn files_changed(shared: &Arc<Shared>, changes: Vec<FileEvent>) {
             document.set_config(config, &context);
             document_changed(shared, &document.uri);
         }
+        // The new run reads every program file, the changed ones too.
+        shared.reindex();
+        return;
     }
     if program_changes.is_empty() {
         return;
