@@ -112,7 +112,10 @@ async fn the_seed_example_gets_its_diagnostics_and_hovers() {
 
     let (line, character) = position_of(&text, "G91 X40");
     let hover = client.hover(SEED_URI, line, character + 1).await;
-    assert!(hover.contains("**G91**"), "{hover}");
+    assert!(
+        hover.contains("**G91** — Incremental dimensions: axis values are distances"),
+        "{hover}"
+    );
     assert!(
         hover.contains("Group 14 (absolute / incremental), modal"),
         "{hover}"

@@ -1,7 +1,7 @@
 //! One table of short descriptions of the language, in our own words (from reference §2 and §8):
 //! G functions with their group, keywords, predefined functions and instructions, position modifiers,
-//! common system variables and the standard cycles. Completion and hover documentation both read it,
-//! so an entry is written once.
+//! common system variables and the standard cycles. Completion, hover documentation and the language
+//! server's hover of a G function all read it, so an entry is written once.
 
 use crate::ide::cycles::CYCLES;
 use crate::syntax::gcodes::{GCode, TABLE};
@@ -97,7 +97,7 @@ pub fn group_name(group: u8) -> &'static str {
 }
 
 /// What a G function does, for those a programmer meets most; others are described by their group.
-fn gcode_summary(name: &str) -> Option<&'static str> {
+pub fn gcode_summary(name: &str) -> Option<&'static str> {
     Some(match name {
         "G0" => "Rapid traverse to the end point; the programmed feed does not apply.",
         "G1" => "Straight line to the end point at feed F.",

@@ -10,9 +10,9 @@ use crate::analysis::document::{
 use crate::config::{AxisKind, MachineConfig};
 use crate::diagnostics::Span;
 use crate::ide::documentation::Documentation;
+use crate::ide::language_docs::{gcode_summary, group_name};
 use crate::lsp::convert::{character_to_byte, span_to_range, PositionEncoding};
 use crate::lsp::documents::Analysed;
-use crate::lsp::gcode_help;
 use crate::lsp::numbers::{fixed, same, short, term};
 use crate::lsp::words::{word_at, words, Word, WordValue};
 use crate::syntax::ast::Modifier;
@@ -377,7 +377,7 @@ fn gcode_hover(code: GCode, report: &BlockReport) -> String {
     let name = code.name();
     let group = code.group();
     let mut text = format!("**{name}**");
-    if let Some(description) = gcode_help::describe(&name) {
+    if let Some(description) = gcode_summary(&name) {
         let _ = write!(text, " — {description}");
     } else if matches!(code, GCode::WorkOffset(_)) {
         text.push_str(" — Settable work offset from the machine's offset table.");
@@ -390,7 +390,7 @@ fn gcode_hover(code: GCode, report: &BlockReport) -> String {
     let _ = write!(
         text,
         "\n\nGroup {group} ({}), {modality}.",
-        gcode_help::group_name(group)
+        group_name(group)
     );
     match group_value(group, &report.before) {
         Some(Some(value)) => {

@@ -9,7 +9,7 @@
 //! - `diagnostics_array.rs`: the published diagnostics' JSON, reused by the next publication.
 //! - `diagnostics_limit.rs`: the findings published under the `maxDiagnostics` setting.
 //! - `hover.rs`, `inlay.rs`, `code_action.rs`, `endpoint_preview.rs`: one feature each.
-//! - `words.rs`: where the words of a block are, for the cursor; `gcode_help.rs`: G-function texts.
+//! - `words.rs`: where the words of a block are, for the cursor.
 //! - `settings.rs`: settings and each document's machine configuration; `ext.rs`: own protocol types.
 //! - `outgoing.rs`: all output; the server's own notifications serialized straight to text.
 //! - `log.rs`: logging and slow-handler reports; `memory.rs`: the allocator's options.
@@ -30,7 +30,6 @@ mod endpoint_preview;
 mod ext;
 mod framing;
 mod frozen_bytes;
-mod gcode_help;
 mod hover;
 mod inlay;
 mod json_string;
