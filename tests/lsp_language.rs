@@ -339,10 +339,7 @@ async fn rename_edits_every_occurrence_and_refuses_bad_names() {
     // after them: the control finds the program by its file name.
     let mut params = workspace.at("call");
     params["newName"] = json!("PART3");
-    let edit = client
-        .request("textDocument/rename", params.clone())
-        .await
-        .unwrap();
+    let edit = client.request("textDocument/rename", params).await.unwrap();
     let changes = edit["documentChanges"].as_array().unwrap();
     let (renames, text_edits): (Vec<&Value>, Vec<&Value>) = changes
         .iter()
@@ -377,11 +374,7 @@ async fn rename_edits_every_occurrence_and_refuses_bad_names() {
 
     // A file of the new name that the index does not know yet is not overwritten.
     std::fs::write(workspace.folder.join("PART3.SPF"), "M17\n").unwrap();
-    let error = client
-        .request("textDocument/rename", params)
-        .await
-        .expect_err("the rename is refused");
-    let message = error["message"].as_str().unwrap();
+    let message = refused_rename(&mut client, &workspace, "call", "PART3").await;
     assert!(
         message.contains("PART3.SPF") && message.contains("exists"),
         "{message}"
@@ -389,45 +382,42 @@ async fn rename_edits_every_occurrence_and_refuses_bad_names() {
     std::fs::remove_file(workspace.folder.join("PART3.SPF")).unwrap();
 
     for (new_name, reason) in [("G1", "G"), ("IF", "keyword"), ("X", "axis")] {
-        let mut params = workspace.at("labelDefinition");
-        params["newName"] = json!(new_name);
-        let error = client
-            .request("textDocument/rename", params)
-            .await
-            .expect_err("the name is refused");
-        assert_eq!(error["code"], -32803, "{error}");
-        let message = error["message"].as_str().unwrap();
+        let message = refused_rename(&mut client, &workspace, "labelDefinition", new_name).await;
         assert!(
             message.to_lowercase().contains(&reason.to_lowercase()),
             "{new_name}: {message}"
         );
     }
     // A name another symbol has: R1 is an R parameter, PART2 a program.
-    let mut params = workspace.at("labelDefinition");
-    params["newName"] = json!("PART2");
+    let message = refused_rename(&mut client, &workspace, "labelDefinition", "PART2").await;
+    assert!(message.contains("PART2"), "{message}");
+    client.shutdown().await;
+}
+
+/// Renames the symbol at `mark` to `new_name`, which the server must refuse as a request that
+/// cannot be done (RequestFailed); returns the reason it gives.
+async fn refused_rename(
+    client: &mut TestClient,
+    workspace: &Workspace,
+    mark: &str,
+    new_name: &str,
+) -> String {
+    let mut params = workspace.at(mark);
+    params["newName"] = json!(new_name);
     let error = client
         .request("textDocument/rename", params)
         .await
-        .expect_err("a collision is refused");
-    assert!(
-        error["message"].as_str().unwrap().contains("PART2"),
-        "{error}"
-    );
-    client.shutdown().await;
+        .expect_err("the rename is refused");
+    assert_eq!(error["code"], -32803, "{error}");
+    error["message"].as_str().unwrap().to_string()
 }
 
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
 async fn a_program_is_not_renamed_by_a_client_that_cannot_rename_its_file() {
     let workspace = Workspace::write("rename_without_files");
     let (mut client, _) = start_with_edits(&workspace, json!({"documentChanges": true})).await;
-    let mut params = workspace.at("call");
-    params["newName"] = json!("PART3");
-    let error = client
-        .request("textDocument/rename", params)
-        .await
-        .expect_err("renaming the calls alone would break them");
-    assert_eq!(error["code"], -32803, "{error}");
-    let message = error["message"].as_str().unwrap();
+    // Renaming the calls alone would break them.
+    let message = refused_rename(&mut client, &workspace, "call", "PART3").await;
     assert!(message.contains("PART2.SPF"), "{message}");
     // Other names are renamed as before.
     let mut params = workspace.at("labelDefinition");
