@@ -232,14 +232,16 @@ impl Shared {
         roots
     }
 
-    /// Starts indexing the workspace again (at start, and when folders or settings change).
-    pub(super) fn reindex(self: &Arc<Self>) {
+    /// Starts indexing the workspace again (at start, and when folders, settings or a
+    /// `sinumerik.toml` change); `false` when there is nothing to index (no folder).
+    pub(super) fn reindex(self: &Arc<Self>) -> bool {
         let roots = self.index_roots();
         if roots.is_empty() {
-            return;
+            return false;
         }
         let progress = lock(&self.info).work_done_progress;
         workspace::start_indexing(self, roots, progress);
+        true
     }
 
     /// Asks the client to tell about changed program files and configuration files.

@@ -573,8 +573,9 @@ pub fn files_changed(shared: &Arc<Shared>, changes: Vec<FileEvent>) {
             document_changed(shared, &document.uri);
         }
         // The new run reads every program file, the changed ones too.
-        shared.reindex();
-        return;
+        if shared.reindex() {
+            return;
+        }
     }
     if program_changes.is_empty() {
         return;
