@@ -263,6 +263,7 @@ mod tests {
             ("part2.spf", "part3.spf"),
             ("Part2.Spf", "PART3.Spf"),
             ("_N_PART2_SPF", "_N_PART3_SPF"),
+            ("_N_CUST_800_SPF", "_N_PART3_SPF"),
             ("_N_PART2_SPF.txt", "_N_PART3_SPF.txt"),
             ("/a/b/MAIN.MPF", "PART3.MPF"),
             ("C:\\x\\_n_part2_spf", "_n_part3_spf"),
