@@ -413,7 +413,7 @@ async fn refused_rename(
 }
 
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
-async fn a_program_is_not_renamed_by_a_client_that_cannot_rename_its_file() {
+async fn a_program_is_renamed_only_by_a_client_that_can_rename_its_file() {
     let workspace = Workspace::write("rename_without_files");
     let (mut client, _) = start_with_edits(&workspace, json!({"documentChanges": true})).await;
     // Renaming the calls alone would break them.
@@ -424,6 +424,22 @@ async fn a_program_is_not_renamed_by_a_client_that_cannot_rename_its_file() {
     params["newName"] = json!("FINISH");
     let edit = client.request("textDocument/rename", params).await.unwrap();
     assert_eq!(edit["documentChanges"].as_array().unwrap().len(), 1);
+    client.shutdown().await;
+
+    // Neovim 0.7 names the resource operations but not `documentChanges`: the file is renamed, after
+    // the edits of MAIN.MPF and PART2.SPF.
+    let (mut client, _) = start_with_edits(
+        &workspace,
+        json!({"resourceOperations": ["rename", "create", "delete"]}),
+    )
+    .await;
+    let mut params = workspace.at("call");
+    params["newName"] = json!("PART3");
+    let edit = client.request("textDocument/rename", params).await.unwrap();
+    let changes = edit["documentChanges"].as_array().unwrap();
+    assert_eq!(changes.len(), 3, "{edit}");
+    assert_eq!(changes[2]["kind"], "rename", "{edit}");
+    assert_eq!(changes[2]["newUri"], workspace.uri("PART3.SPF").as_str());
     client.shutdown().await;
 }
 

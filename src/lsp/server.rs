@@ -46,7 +46,9 @@ struct ClientInfo {
     refreshes_inlay_hints: bool,
     /// Whether workspace edits may carry document versions (`documentChanges`).
     versioned_edits: bool,
-    /// Whether workspace edits may rename files (`resourceOperations` has `rename`).
+    /// Whether workspace edits may rename files (`resourceOperations` has `rename`). Such edits go
+    /// as `documentChanges`, which a client that renames files takes whether or not it says so:
+    /// Neovim 0.7 names the operations but not `documentChanges`.
     renames_files: bool,
     /// Whether the client shows `$/progress` for a token the server creates.
     work_done_progress: bool,
@@ -423,7 +425,6 @@ impl LanguageServer for Backend {
                 .unwrap_or(false),
             renames_files: workspace
                 .and_then(|workspace| workspace.workspace_edit.as_ref())
-                .filter(|edit| edit.document_changes == Some(true))
                 .and_then(|edit| edit.resource_operations.as_ref())
                 .is_some_and(|operations| operations.contains(&ResourceOperationKind::Rename)),
             work_done_progress: params
