@@ -35,13 +35,22 @@ pub struct IndexedDocument {
     pub symbols: Arc<SymbolTable>,
 }
 
+/// The stem of a file name or path and its extension with the dot (`PART2` and `.SPF`); a name
+/// without a dot after its first byte has an empty extension.
+fn stem_and_extension(file_name: &str) -> (&str, &str) {
+    let base = file_name.rsplit(['/', '\\']).next().unwrap_or(file_name);
+    match base.rfind('.') {
+        Some(dot) if dot > 0 => (&base[..dot], &base[dot..]),
+        _ => (base, ""),
+    }
+}
+
 /// The program name and kind of a file name or path: `PART2.SPF` and `_N_PART2_SPF` are `PART2`.
 pub fn program_name_and_kind(file_name: &str) -> (String, FileKind) {
-    let base = file_name.rsplit(['/', '\\']).next().unwrap_or(file_name);
-    let (stem, extension) = match base.rfind('.') {
-        Some(dot) if dot > 0 => (&base[..dot], &base[dot + 1..]),
-        _ => (base, ""),
-    };
+    let (stem, dotted_extension) = stem_and_extension(file_name);
+    let extension = dotted_extension
+        .strip_prefix('.')
+        .unwrap_or(dotted_extension);
     let upper_stem = stem.to_ascii_uppercase();
     let (stem, extension) = match upper_stem.strip_prefix("_N_") {
         Some(rest)
@@ -74,36 +83,29 @@ pub fn program_name_and_kind(file_name: &str) -> (String, FileKind) {
 /// own `_N_PART2_SPF` becomes `_N_PART3_SPF`. The control finds a program by its file name, so a
 /// renamed program needs its file renamed too.
 pub fn file_name_for_program(file_name: &str, program: &str) -> String {
-    let base = file_name.rsplit(['/', '\\']).next().unwrap_or(file_name);
-    let (stem, extension) = match base.rfind('.') {
-        Some(dot) if dot > 0 => (&base[..dot], &base[dot..]),
-        _ => (base, ""),
-    };
-    let upper_stem = stem.to_ascii_uppercase();
-    let control_style = upper_stem.starts_with("_N_")
-        && program_name_and_kind(base).0 != upper_stem
-        && stem.rfind('_').is_some_and(|underscore| underscore > 2);
-    if control_style {
+    let (stem, extension) = stem_and_extension(file_name);
+    // Only the control's own form gives a program name other than the stem itself.
+    let control_style = program_name_and_kind(file_name).0 != stem.to_ascii_uppercase();
+    match stem.rfind('_') {
         // `_N_` + name + `_` + type, as the control writes it: only the name changes.
-        let underscore = stem.rfind('_').unwrap_or(stem.len());
-        let prefix = &stem[..3];
-        let name = if stem[3..underscore]
-            .bytes()
-            .any(|byte| byte.is_ascii_uppercase())
-        {
-            program.to_ascii_uppercase()
-        } else {
-            program.to_ascii_lowercase()
-        };
-        return format!("{prefix}{name}{}{extension}", &stem[underscore..]);
+        Some(underscore) if control_style && underscore > 2 => format!(
+            "{}{}{}{extension}",
+            &stem[..3],
+            in_case_of(&stem[3..underscore], program),
+            &stem[underscore..]
+        ),
+        _ => format!("{}{extension}", in_case_of(stem, program)),
     }
-    // A stem written in lower case keeps its case; any other is written as the control shows names.
-    let name = if stem.bytes().any(|byte| byte.is_ascii_uppercase()) {
-        program.to_ascii_uppercase()
+}
+
+/// `name` in lower case where `written` is (a name written in lower case keeps its case), else in
+/// upper case, as the control shows names.
+fn in_case_of(written: &str, name: &str) -> String {
+    if written.bytes().any(|byte| byte.is_ascii_uppercase()) {
+        name.to_ascii_uppercase()
     } else {
-        program.to_ascii_lowercase()
-    };
-    format!("{name}{extension}")
+        name.to_ascii_lowercase()
+    }
 }
 
 /// The symbol tables of many documents and the cross-document lookups.

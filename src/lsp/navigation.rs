@@ -5,6 +5,7 @@
 
 use crate::diagnostics::Span;
 use crate::ide::navigation::{self, RenameError, Role, WorkspaceSymbolKind};
+use crate::ide::workspace::file_name_for_program;
 use crate::ide::{DocumentId, Location as IdeLocation};
 use crate::lsp::convert::{character_to_byte, span_to_range, PositionEncoding};
 use crate::lsp::documents::Analysed;
@@ -317,7 +318,7 @@ pub fn rename(
 }
 
 /// The file renames that go with a program rename, as (old, new) URIs: each file named after the
-/// program gets the new name in the same style (`ide::workspace::file_name_for_program`). Refused when
+/// program gets the new name in the same style ([`file_name_for_program`]). Refused when
 /// the client cannot rename files or a file of the new name exists already.
 fn file_renames(
     state: &IndexState,
@@ -345,7 +346,7 @@ fn file_renames(
                 "the control finds the program by its file name, so {old_name} must be renamed too, and this editor does not let the language server rename files: rename the file first, then the program"
             )));
         }
-        let new_name = crate::ide::workspace::file_name_for_program(&old_name, new_program);
+        let new_name = file_name_for_program(&old_name, new_program);
         let new_path = old_path.with_file_name(&new_name);
         if new_path.exists() {
             return Err(refused(format!(
