@@ -15,6 +15,7 @@ pub mod document;
 pub mod engine;
 pub mod eval;
 pub mod four_decimals;
+pub mod library;
 pub mod frame;
 pub mod machine;
 pub mod offsets;
