@@ -250,6 +250,14 @@ codes! {
     SuppressionWithoutAxes = "A222", Hint, "G53, G153 or SUPA in a block without axis values: they act only on the axes of their own block.";
     IncrementAfterOffsetChange = "A223", Hint, "A G91 move of an axis right after a settable offset or frame change: the change is traversed in addition (SD42440 = 1).";
     AxisLeftOutAfterRotation = "A224", Information, "The first move after a frame change that rotates, scales or mirrors leaves out a geometry axis the change affects: it keeps its value in the new coordinates, so the move may move it too.";
+    EndlessLoop = "E401", Warning, "A loop or jump cycle that the program never leaves: its state repeats unchanged, so the control would run it forever.";
+    ExecutionBudgetUsed = "E402", Information, "The configured budget of executed blocks is used up: the rest of the program is read in program order and its values are uncertain.";
+    LoopPassLimit = "E403", Information, "A loop that ran more passes than the configured limit: what its body changes is unknown after it.";
+    ConditionNotKnown = "E404", Information, "A condition of a loop or jump that depends on values the program does not determine (main-run variables, machine data): every way is followed, and what differs between them becomes unknown.";
+    SubprogramLevelExceeded = "E405", Error, "A call that would need more than the control's program levels (16: the main program and 15 nested calls), or a recursion that does not end (alarm 14012).";
+    JumpTargetNotFound = "E406", Error, "A jump whose target, computed while the program runs (a STRING variable), names no label of the program (alarm 14080).";
+    RestartByPlc = "E407", Information, "GOTOS restarts the program only when the PLC requests it; the analysis follows the configured request.";
+    FlowNotFollowed = "E408", Information, "A jump whose target is not known statically, or a control structure whose nesting is broken: from there on the program is read in program order and its values are uncertain.";
     UnknownSubprogram = "W301", Warning, "A call of a subprogram that no file of the workspace defines and that is not a cycle of the control (reported only when the workspace index is complete, and not for a word S120 already reports as read as a call).";
     TooManyArguments = "W302", Warning, "A call that passes more arguments than the PROC header of the called subprogram declares.";
     MissingReferenceArgument = "W303", Warning, "A call that leaves out an argument the PROC header passes by reference (`VAR`): the subprogram has no variable to write to.";

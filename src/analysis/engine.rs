@@ -17,6 +17,7 @@ use std::sync::Arc;
 mod checks;
 mod circles;
 mod frame_variables;
+mod join;
 mod macros;
 
 /// A block that moves axes.
@@ -136,6 +137,12 @@ pub struct Engine<'a> {
     plane_axis_cache: [(Option<usize>, Option<usize>); 3],
     /// The axis of each axis word, by its letter for the common words.
     axes: AxisLookup,
+    /// Set by the interpreter, which follows labels, jumps and control structures itself: they do not
+    /// make values uncertain then.
+    executing: bool,
+    /// Set by the interpreter for one block whose call it runs itself (the callee was found): the call
+    /// then forgets nothing, since the callee's own blocks say what changes.
+    call_followed: bool,
 }
 
 /// What the engine remembers about the program beyond the modal state: its macros and what the
@@ -246,6 +253,8 @@ impl<'a> Engine<'a> {
                 (index(first), index(second))
             }),
             axes: AxisLookup::new(config),
+            executing: false,
+            call_followed: false,
         }
     }
 
@@ -317,6 +326,8 @@ impl<'a> Engine<'a> {
             memory: _,
             plane_axis_cache,
             axes,
+            executing,
+            call_followed,
         } = Engine::new(config);
         Engine {
             config,
@@ -334,6 +345,76 @@ impl<'a> Engine<'a> {
             memory: snapshot.memory,
             plane_axis_cache,
             axes,
+            executing,
+            call_followed,
+        }
+    }
+
+    /// Makes the engine a part of the interpreter: labels, jumps and control structures no longer make
+    /// values uncertain, because the interpreter runs the blocks in the order the control runs them.
+    pub fn set_executing(&mut self, executing: bool) {
+        self.executing = executing;
+    }
+
+    /// Tells the engine that the interpreter runs the call of the next block itself, so that the call
+    /// forgets nothing; it applies to one [`Engine::step`] only.
+    pub fn follow_call_of_next_block(&mut self) {
+        self.call_followed = true;
+    }
+
+    /// A subprogram analysed on its own starts from the reset state as an assumption: the G functions
+    /// keep their reset values, while what no reset determines (the settable offset, the frames, the
+    /// poles, positions) stays unknown.
+    pub fn assume_reset_entry(&mut self) {
+        self.missing_feed_reported = true;
+        self.state.groups[8] = None;
+        self.state.poles = [crate::analysis::state::Pole::Unknown; 3];
+        self.state.frame = None;
+        self.state.offset.iter_mut().for_each(|value| *value = None);
+        self.state.settable_data.forget_all();
+    }
+
+    /// Per configured axis, how the block last applied wrote it: 0 not, 1 in workpiece coordinates,
+    /// 2 as a machine position.
+    pub fn written_axes(&self) -> &[u8] {
+        &self.written
+    }
+
+    /// Forgets what a call of a program the analysis cannot see may change: positions, variables,
+    /// frames and the settable offsets' data.
+    pub fn forget_after_unknown_call(&mut self) {
+        self.missing_feed_reported = true;
+        self.state.forget_positions();
+        self.state.variables.forget_all();
+        self.state.frame = None;
+        self.tangent = None;
+        self.state.offset.iter_mut().for_each(|value| *value = None);
+        self.state.settable_data.forget_all();
+    }
+
+    /// From here on the values may not follow the control's path through the program: what the
+    /// interpreter could not run is read in program order.
+    pub fn mark_flow_uncertain(&mut self) {
+        self.flow_uncertain = true;
+    }
+
+    /// The return from a subprogram with `SAVE` (reference §8.3): the modal G functions and the
+    /// programmable frame active at the call are active again; the axes keep their machine
+    /// set-points, expressed in the restored frame.
+    pub fn restore_saved(
+        &mut self,
+        groups: &[Option<GCode>; crate::analysis::state::GROUP_COUNT],
+        frame: Option<crate::analysis::frame::Frame>,
+    ) {
+        self.state.groups = *groups;
+        let frame_before = self.state.frame;
+        if frame_before != frame {
+            self.state.frame = frame;
+            crate::analysis::machine::reexpress(
+                &mut self.state,
+                &self.slots,
+                crate::analysis::machine::Replaced::Frame(frame_before),
+            );
         }
     }
 
@@ -433,6 +514,7 @@ impl<'a> Engine<'a> {
 
     fn step_block(&mut self, line: &str, block: &Block, diagnostics: &mut Vec<Diagnostic>) -> bool {
         self.last_arc = None;
+        let call_followed = std::mem::take(&mut self.call_followed);
         if block.is_header {
             return false;
         }
@@ -444,13 +526,14 @@ impl<'a> Engine<'a> {
         // A label may be the target of a backward jump and a structure keyword opens a loop or branch:
         // from here on the control may run blocks again or skip them, so values assigned from here on
         // (this block included) are not followed in program order.
-        if block.label.is_some()
-            || statements.iter().any(|statement| {
-                matches!(
-                    statement,
-                    Statement::Jump { .. } | Statement::Structure { .. }
-                )
-            })
+        if !self.executing
+            && (block.label.is_some()
+                || statements.iter().any(|statement| {
+                    matches!(
+                        statement,
+                        Statement::Jump { .. } | Statement::Structure { .. }
+                    )
+                }))
         {
             self.flow_uncertain = true;
         }
@@ -614,7 +697,7 @@ impl<'a> Engine<'a> {
                         self.state.variables.set_variable(&upper, value);
                     }
                 }
-                Statement::Call { kind, .. } if *kind != CallKind::Modal => {
+                Statement::Call { kind, .. } if *kind != CallKind::Modal && !call_followed => {
                     forget_after = true;
                     frame_data_changed = true;
                 }

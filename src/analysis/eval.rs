@@ -38,6 +38,37 @@ impl Variables {
         self.named.insert(upper_name.to_string(), value);
     }
 
+    /// Puts the user variables of the running program level aside (a call starts a level of its own);
+    /// R parameters are global and stay.
+    pub fn take_locals(&mut self) -> Variables {
+        Variables {
+            r_parameters: HashMap::new(),
+            named: std::mem::take(&mut self.named),
+        }
+    }
+
+    /// Brings back the user variables `take_locals` put aside (the return to the caller's level).
+    pub fn restore_locals(&mut self, locals: Variables) {
+        self.named = locals.named;
+    }
+
+    /// Forgets what differs from `other`: a value known on one way and different or unknown on the
+    /// other becomes unknown where the ways meet.
+    pub fn join(&mut self, other: &Variables) {
+        self.r_parameters
+            .retain(|number, value| other.r_parameters.get(number) == Some(value));
+        for (name, value) in self.named.iter_mut() {
+            if other.named.get(name) != Some(value) {
+                *value = None;
+            }
+        }
+        for name in other.named.keys() {
+            if !self.named.contains_key(name) {
+                self.named.insert(name.clone(), None);
+            }
+        }
+    }
+
     /// Forgets every value: after a call of an unknown subprogram, anything may have changed.
     pub fn forget_all(&mut self) {
         self.r_parameters.clear();

@@ -5,7 +5,9 @@ use super::preview_json::{self, round};
 use super::report::ProgramLines;
 use super::source_file::read_source_file;
 use super::{EXIT_ERRORS_FOUND, EXIT_OK, EXIT_TROUBLE};
-use crate::analysis::{analyze_program, visit_moves, Move, ProgramKind};
+use crate::analysis::execution::{execute, ExecutedMove, ExecutionOptions};
+use crate::analysis::library::ProgramLibrary;
+use crate::analysis::{diagnose_program, Move, ProgramKind};
 use crate::config::{discover_config_file, load_config_file, MachineConfig};
 use crate::diagnostics::{LineDiagnostic, Severity, Span};
 use std::io::{self, Write};
@@ -40,16 +42,34 @@ pub(crate) fn run_preview(
             .extension()
             .and_then(|extension| extension.to_str()),
     );
+    let library = crate::analysis::library::NoLibrary;
+    let execution_options = crate::analysis::execution::ExecutionOptions::default();
+    let run = |visit: &mut dyn FnMut(ExecutedMove)| {
+        run_program(
+            &source.text,
+            &config,
+            kind,
+            &library,
+            &execution_options,
+            visit,
+        )
+    };
     let diagnostics = match options.format {
         PreviewFormat::Json => {
             let mut out = io::BufWriter::with_capacity(1 << 16, stdout);
             let file = options.path.display().to_string();
-            preview_json::write_header(&mut out, &file, config.metric)?;
+            let assumed = crate::analysis::execution::entry_assumptions(
+                &source.text,
+                &config,
+                kind,
+                &execution_options,
+            );
+            preview_json::write_header_with(&mut out, &file, config.metric, &assumed)?;
             let mut first = true;
             let mut written = Ok(());
-            let diagnostics = visit_moves(&source.text, &config, kind, |movement| {
+            let diagnostics = run(&mut |movement| {
                 if written.is_ok() {
-                    written = preview_json::write_move(&mut out, movement, first);
+                    written = preview_json::write_executed_move(&mut out, &movement, first);
                     first = false;
                 }
             });
@@ -65,9 +85,9 @@ pub(crate) fn run_preview(
             let mut out = io::BufWriter::with_capacity(1 << 16, stdout);
             write_csv_header(&mut out, &config)?;
             let mut written = Ok(());
-            let diagnostics = visit_moves(&source.text, &config, kind, |movement| {
+            let diagnostics = run(&mut |movement| {
                 if written.is_ok() {
-                    written = write_csv_row(&mut out, &config, movement);
+                    written = write_csv_row(&mut out, &config, &movement);
                 }
             });
             written?;
@@ -75,9 +95,10 @@ pub(crate) fn run_preview(
             diagnostics
         }
         PreviewFormat::Svg => {
-            let analysis = analyze_program(&source.text, &config, kind);
-            super::preview_svg::write_svg(stdout, &config, &analysis.moves, options.max_segments)?;
-            analysis.diagnostics
+            let mut moves = Vec::new();
+            let diagnostics = run(&mut |movement| moves.push(movement.movement));
+            super::preview_svg::write_svg(stdout, &config, &moves, options.max_segments)?;
+            diagnostics
         }
     };
     let has_errors = diagnostics
@@ -88,6 +109,25 @@ pub(crate) fn run_preview(
     } else {
         EXIT_OK
     })
+}
+
+/// Runs a program the way the control runs it, handing each executed move to `visit`, and returns
+/// every finding: those of reading the program block by block and those of running it.
+pub(crate) fn run_program(
+    text: &str,
+    config: &MachineConfig,
+    kind: ProgramKind,
+    library: &dyn ProgramLibrary,
+    options: &ExecutionOptions,
+    visit: &mut dyn FnMut(ExecutedMove),
+) -> Vec<LineDiagnostic> {
+    let mut diagnostics = diagnose_program(text, config, kind);
+    let execution = execute(text, config, kind, library, options, visit);
+    if !execution.findings.is_empty() {
+        diagnostics.extend(execution.findings);
+        diagnostics.sort_by_key(|item| (item.line, item.diagnostic.span.start()));
+    }
+    diagnostics
 }
 
 /// The JSON document of `preview` for `moves` and `diagnostics` of the program `file`, as the language
@@ -132,10 +172,15 @@ fn write_csv_header(out: &mut dyn Write, config: &MachineConfig) -> io::Result<(
     for axis in &config.axes {
         write!(out, ",{}", axis.name)?;
     }
-    writeln!(out, ",feed,uncertain")
+    writeln!(out, ",feed,uncertain,pass,file")
 }
 
-fn write_csv_row(out: &mut dyn Write, config: &MachineConfig, movement: &Move) -> io::Result<()> {
+fn write_csv_row(
+    out: &mut dyn Write,
+    config: &MachineConfig,
+    executed: &ExecutedMove,
+) -> io::Result<()> {
+    let movement = &executed.movement;
     write!(
         out,
         "{},{},{}",
@@ -157,5 +202,17 @@ fn write_csv_row(out: &mut dyn Write, config: &MachineConfig, movement: &Move) -
         .feed
         .map(|feed| round(feed).to_string())
         .unwrap_or_default();
-    writeln!(out, ",{feed},{}", movement.uncertain.join(" "))
+    write!(out, ",{feed},{}", movement.uncertain.join(" "))?;
+    let pass = if executed.pass > 0 {
+        executed.pass.to_string()
+    } else {
+        String::new()
+    };
+    let file = executed.path.as_deref().unwrap_or("");
+    // A path with a comma or quote is quoted as CSV quotes fields.
+    if file.contains([',', '"', '\n']) {
+        writeln!(out, ",{pass},\"{}\"", file.replace('"', "\"\""))
+    } else {
+        writeln!(out, ",{pass},{file}")
+    }
 }

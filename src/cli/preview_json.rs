@@ -2,6 +2,7 @@
 //! a tree of a million JSON values nor keep its moves in memory. Numbers go through serde_json, so they
 //! print exactly as any other JSON the product writes (`58.0`, shortest round trip).
 
+use crate::analysis::execution::ExecutedMove;
 use crate::analysis::Move;
 use crate::diagnostics::LineDiagnostic;
 use std::io::{self, Write};
@@ -24,14 +25,89 @@ pub(crate) fn round(value: f64) -> f64 {
 
 /// Writes the opening of the document: the file, the units and the start of the `moves` array.
 pub(crate) fn write_header(out: &mut dyn Write, file: &str, metric: bool) -> io::Result<()> {
+    write_header_with(out, file, metric, &[])
+}
+
+/// Writes the opening of the document with what was assumed about the entry state of a subprogram
+/// (`"assumed": {"units": "G71", ...}`, left out when nothing was assumed).
+pub(crate) fn write_header_with(
+    out: &mut dyn Write,
+    file: &str,
+    metric: bool,
+    assumed: &[(&'static str, String)],
+) -> io::Result<()> {
     out.write_all(b"{\"file\":")?;
     serde_json::to_writer(&mut *out, file)?;
     let units = if metric { "mm" } else { "inch" };
-    write!(out, ",\"units\":\"{units}\",\n\"moves\": [")
+    write!(out, ",\"units\":\"{units}\",")?;
+    if !assumed.is_empty() {
+        out.write_all(b"\"assumed\":{")?;
+        for (index, (name, value)) in assumed.iter().enumerate() {
+            if index > 0 {
+                out.write_all(b",")?;
+            }
+            write!(out, "\"{name}\":")?;
+            serde_json::to_writer(&mut *out, value)?;
+        }
+        out.write_all(b"},")?;
+    }
+    out.write_all(b"\n\"moves\": [")
 }
 
 /// Writes one move; `first` says whether it opens the array.
 pub(crate) fn write_move(out: &mut dyn Write, movement: &Move, first: bool) -> io::Result<()> {
+    write_move_fields(out, movement, first)?;
+    out.write_all(b"}")
+}
+
+/// Writes one executed move: the move's fields, then what execution adds (`pass`, `file`, `stack`,
+/// `conditional`, `assumed`), each only where it applies.
+pub(crate) fn write_executed_move(
+    out: &mut dyn Write,
+    executed: &ExecutedMove,
+    first: bool,
+) -> io::Result<()> {
+    write_move_fields(out, &executed.movement, first)?;
+    if executed.pass > 0 {
+        write!(out, ",\"pass\":{}", executed.pass)?;
+    }
+    if let Some(path) = &executed.path {
+        out.write_all(b",\"file\":")?;
+        serde_json::to_writer(&mut *out, path.as_ref())?;
+    }
+    if !executed.stack.is_empty() {
+        out.write_all(b",\"stack\":[")?;
+        for (index, site) in executed.stack.iter().enumerate() {
+            if index > 0 {
+                out.write_all(b",")?;
+            }
+            out.write_all(b"{\"file\":")?;
+            match &site.path {
+                Some(path) => serde_json::to_writer(&mut *out, path.as_ref())?,
+                None => out.write_all(b"null")?,
+            }
+            write!(out, ",\"line\":{}}}", site.line + 1)?;
+        }
+        out.write_all(b"]")?;
+    }
+    if executed.conditional {
+        out.write_all(b",\"conditional\":true")?;
+    }
+    if !executed.assumed.is_empty() {
+        out.write_all(b",\"assumed\":[")?;
+        for (index, name) in executed.assumed.iter().enumerate() {
+            if index > 0 {
+                out.write_all(b",")?;
+            }
+            serde_json::to_writer(&mut *out, name.as_ref())?;
+        }
+        out.write_all(b"]")?;
+    }
+    out.write_all(b"}")
+}
+
+/// Writes the fields of one move, without the closing brace.
+fn write_move_fields(out: &mut dyn Write, movement: &Move, first: bool) -> io::Result<()> {
     out.write_all(if first { b"\n  " } else { b",\n  " })?;
     write!(out, "{{\"line\":{},\"block\":", movement.line + 1)?;
     serde_json::to_writer(&mut *out, &movement.block_number)?;
@@ -80,7 +156,7 @@ pub(crate) fn write_move(out: &mut dyn Write, movement: &Move, first: bool) -> i
         }
         serde_json::to_writer(&mut *out, name.as_ref())?;
     }
-    out.write_all(b"]}")
+    out.write_all(b"]")
 }
 
 /// Closes the `moves` array and writes the diagnostics with 1-based lines and character columns

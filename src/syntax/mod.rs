@@ -4,6 +4,7 @@
 pub mod ast;
 pub mod context;
 pub mod gcodes;
+pub mod jumps;
 pub mod keywords;
 pub mod lexer;
 pub mod lines;

@@ -1,0 +1,308 @@
+//! Calls and returns (reference §8.3, §17): the callee found through the library, its parameters
+//! bound by position (an omitted one is 0, §17.1), its own level of user variables, `P` repetitions,
+//! `SAVE`, the modal call `MCALL`, the return by `M17`/`RET`/end of file, and the level limit.
+
+use crate::analysis::engine::Engine;
+use crate::analysis::eval::evaluate;
+use crate::analysis::execution::interpreter::{Interpreter, Next};
+use crate::analysis::execution::paths::{
+    Activation, Argument, CallFrame, Control, ModalCall, SavedModal,
+};
+use crate::analysis::execution::program::ProgramUnit;
+use crate::analysis::execution::{CallSite, ProgramEnd};
+use crate::diagnostics::{Code, Span};
+use crate::syntax::ast::{AddressKind, Block, CallKind, ExprId, Statement, ValueExpr};
+use std::sync::Arc;
+
+/// A call about to be run.
+pub(super) struct PendingCall {
+    unit: usize,
+    arguments: Vec<Argument>,
+    repetitions: u32,
+    /// The line of the call in the calling program.
+    line: usize,
+    span: Span,
+}
+
+/// What a subprogram's `PROC` line declares.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub(super) struct ProcInfo {
+    parameters: Vec<String>,
+    save: bool,
+}
+
+impl<'a, 's> Interpreter<'a, 's> {
+    /// The program a call of `name` runs, read once.
+    pub(super) fn find_unit(&mut self, name: &str) -> Option<usize> {
+        if let Some(found) = self.unit_names.get(name) {
+            return *found;
+        }
+        let found = self.library.find(name).map(|program| {
+            let unit = ProgramUnit::new(
+                program.name.clone(),
+                Some(Arc::clone(&program.path)),
+                Arc::clone(&program.text),
+                self.config,
+            );
+            self.add_unit(unit)
+        });
+        self.unit_names.insert(name.to_string(), found);
+        found
+    }
+
+    /// The call of `block` the interpreter runs itself, when its program is found.
+    pub(super) fn prepare_call(
+        &mut self,
+        control: &Control,
+        engine: &Engine<'a>,
+        unit: &ProgramUnit,
+        pc: usize,
+        block: &Block,
+    ) -> Option<PendingCall> {
+        let line = unit.line(pc);
+        let statements = block.interpreted_statements();
+        let (name, args, span) = statements.iter().find_map(|statement| match statement {
+            Statement::Call {
+                kind: kind @ (CallKind::Named | CallKind::Indirect),
+                name: Some(name),
+                args,
+                span,
+            } => Some((callee_name(line, *name, *kind)?, args, *span)),
+            _ => None,
+        })?;
+        let _ = control;
+        let index = self.find_unit(&name)?;
+        let arguments = evaluate_arguments(engine, block, line, args);
+        Some(PendingCall {
+            unit: index,
+            arguments,
+            repetitions: repetitions(engine, block, line),
+            line: pc,
+            span,
+        })
+    }
+
+    /// Keeps track of `MCALL` and gives the modal call to run after a block that moved.
+    pub(super) fn modal_call_after(
+        &mut self,
+        control: &mut Control,
+        engine: &mut Engine<'a>,
+        block: &Block,
+        pc: usize,
+        moved: bool,
+    ) -> Option<PendingCall> {
+        let line = self.units[control.level().unit].line(pc).to_string();
+        for statement in block.interpreted_statements() {
+            if let Statement::Call {
+                kind: CallKind::Modal,
+                name,
+                args,
+                ..
+            } = statement
+            {
+                control.level_mut().modal_call = name.and_then(|name| {
+                    Some(ModalCall {
+                        name: callee_name(&line, name, CallKind::Named)?,
+                        arguments: evaluate_arguments(engine, block, &line, args),
+                    })
+                });
+                return None;
+            }
+        }
+        if !moved {
+            return None;
+        }
+        let modal = control.level().modal_call.clone()?;
+        match self.find_unit(&modal.name) {
+            Some(unit) => Some(PendingCall {
+                unit,
+                arguments: modal.arguments,
+                repetitions: 1,
+                line: pc,
+                span: Span::default(),
+            }),
+            None => {
+                // A program the analysis cannot see runs after the block: anything may change.
+                engine.forget_after_unknown_call();
+                None
+            }
+        }
+    }
+
+    /// Starts the called program on a level of its own.
+    pub(super) fn enter(
+        &mut self,
+        control: &mut Control,
+        engine: &mut Engine<'a>,
+        call: PendingCall,
+    ) -> Next {
+        if control.levels.len() >= self.options.max_levels {
+            let name = self.units[call.unit].name.clone();
+            self.report(
+                control,
+                call.line,
+                Code::SubprogramLevelExceeded,
+                call.span,
+                format!(
+                    "calling {name} here needs program level {}, beyond the control's {} levels (alarm 14012): the program stops",
+                    control.levels.len(),
+                    self.options.max_levels
+                ),
+            );
+            return Next::Stop;
+        }
+        let info = self.proc_info(call.unit);
+        let saved = info.save.then_some(SavedModal {
+            groups: engine.state.groups,
+            frame: engine.state.frame,
+        });
+        let caller_locals = engine.state.variables.take_locals();
+        for (index, parameter) in info.parameters.iter().enumerate() {
+            let value = match call.arguments.get(index) {
+                None | Some(Argument::Omitted) => Some(0.0),
+                Some(Argument::Given(value)) => *value,
+            };
+            engine.state.variables.set_variable(parameter, value);
+        }
+        let caller = control.level();
+        let mut stack: Vec<CallSite> = caller.stack.to_vec();
+        stack.push(CallSite {
+            path: self.units[caller.unit].path.clone(),
+            line: call.line,
+        });
+        control.levels.push(Activation {
+            unit: call.unit,
+            pc: 0,
+            loops: Vec::new(),
+            call: Some(Box::new(CallFrame {
+                repetitions_left: call.repetitions.saturating_sub(1),
+                saved,
+                caller_locals,
+                references: Vec::new(),
+            })),
+            retest_for: None,
+            modal_call: None,
+            jump_passes: Vec::new(),
+            stack: Arc::from(stack),
+        });
+        Next::Moved
+    }
+
+    /// The end of a program level: M17/RET (or the end of the file) return to the caller, M2/M30 end
+    /// the program (in a subprogram as configured, reference §17.4).
+    pub(super) fn end_level(
+        &mut self,
+        control: &mut Control,
+        engine: &mut Engine<'a>,
+        end: ProgramEnd,
+    ) -> Next {
+        if control.levels.len() == 1
+            || (end == ProgramEnd::End && !self.options.m30_ends_subprogram)
+        {
+            return Next::Stop;
+        }
+        let level = control.levels.pop().expect("a called level");
+        let call = level.call.expect("a called level has its call");
+        if let Some(saved) = &call.saved {
+            engine.restore_saved(&saved.groups, saved.frame);
+        }
+        engine.state.variables.restore_locals(call.caller_locals);
+        if call.repetitions_left > 0 {
+            // The next pass runs without the parameters, which the first pass only receives
+            // (reference §17.7).
+            let line = control.level().pc.saturating_sub(1);
+            return self.enter(
+                control,
+                engine,
+                PendingCall {
+                    unit: level.unit,
+                    arguments: Vec::new(),
+                    repetitions: call.repetitions_left,
+                    line,
+                    span: Span::default(),
+                },
+            );
+        }
+        Next::Moved
+    }
+
+    /// The PROC line of a program: its parameters and whether it has SAVE.
+    fn proc_info(&mut self, unit_index: usize) -> ProcInfo {
+        let unit = Arc::clone(&self.units[unit_index]);
+        let mut parser = crate::syntax::LineParser::new();
+        let mut block = Block::default();
+        for index in 0..unit.line_count().min(64) {
+            unit.parse(&mut parser, index, &mut block);
+            let line = unit.line(index);
+            for statement in &block.statements {
+                if let Statement::ProcedureHeader {
+                    parameters, span, ..
+                } = statement
+                {
+                    let parameters = parameters
+                        .iter()
+                        .map(|name| line[name.start()..name.end()].to_ascii_uppercase())
+                        .collect();
+                    let text = line[span.start()..span.end()].to_ascii_uppercase();
+                    let attributes = text.rsplit(')').next().unwrap_or("");
+                    let save = attributes
+                        .split(|c: char| !c.is_ascii_alphanumeric() && c != '_')
+                        .skip(usize::from(!text.contains(')')) * 2)
+                        .any(|word| word == "SAVE");
+                    return ProcInfo { parameters, save };
+                }
+            }
+        }
+        ProcInfo::default()
+    }
+}
+
+/// The upper-case name a call statement names: a name, `L123`, or the string of `CALL "NAME"`.
+fn callee_name(line: &str, name: Span, kind: CallKind) -> Option<String> {
+    let text = line.get(name.start()..name.end())?.trim();
+    let text = if kind == CallKind::Indirect {
+        text.strip_prefix('"')?.strip_suffix('"')?
+    } else {
+        text
+    };
+    (!text.is_empty()).then(|| text.to_ascii_uppercase())
+}
+
+fn evaluate_arguments(
+    engine: &Engine,
+    block: &Block,
+    line: &str,
+    args: &[Option<ExprId>],
+) -> Vec<Argument> {
+    args.iter()
+        .map(|argument| match argument {
+            None => Argument::Omitted,
+            Some(id) => Argument::Given(
+                evaluate(block, line, *id, &engine.state.variables)
+                    .ok()
+                    .flatten(),
+            ),
+        })
+        .collect()
+}
+
+/// The `P` of a call block: how often the subprogram runs (1 when not written or not known).
+fn repetitions(engine: &Engine, block: &Block, line: &str) -> u32 {
+    block
+        .interpreted_statements()
+        .iter()
+        .find_map(|statement| match statement {
+            Statement::Address(word) if word.kind == AddressKind::Repetitions => {
+                match word.value.expr {
+                    ValueExpr::Constant { value, .. } => Some(value),
+                    ValueExpr::Expr(id) => evaluate(block, line, id, &engine.state.variables)
+                        .ok()
+                        .flatten(),
+                    ValueExpr::Missing => None,
+                }
+            }
+            _ => None,
+        })
+        .filter(|value| *value >= 1.0 && *value <= 9999.0 && value.fract() == 0.0)
+        .map_or(1, |value| value as u32)
+}

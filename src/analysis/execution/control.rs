@@ -1,0 +1,479 @@
+//! The decisions of one block: control structures (IF/ELSE, WHILE, FOR, REPEAT/UNTIL, LOOP, CASE),
+//! jumps with and without conditions, and the program ends. A condition whose value is known takes
+//! the way the control takes; an unknown one lets both ways run (see `Interpreter::fork`).
+
+use crate::analysis::engine::Engine;
+use crate::analysis::eval::{evaluate, Variables};
+use crate::analysis::execution::interpreter::{mark_unknown_loop, Interpreter, Next};
+use crate::analysis::execution::paths::{Control, LoopFrame};
+use crate::analysis::execution::program::{Partner, ProgramUnit};
+use crate::analysis::execution::{ends_program, ProgramEnd};
+use crate::diagnostics::{Code, Span};
+use crate::syntax::ast::{
+    AssignTarget, Block, ExprId, JumpKind, JumpTarget, Statement, StructureKeyword,
+};
+use crate::syntax::jumps::{resolve_jump, JumpResolution};
+
+/// Passes of one loop after which the interpreter compares the state at its head with the state one
+/// such interval before: equal states mean the loop never ends.
+const ENDLESS_CHECK_INTERVAL: u32 = 1000;
+
+/// REAL values compare with a relative tolerance on the control (reference §18.1).
+fn real_equal(left: f64, right: f64) -> bool {
+    (left - right).abs() <= 1e-12 * left.abs().max(right.abs())
+}
+
+impl<'a, 's> Interpreter<'a, 's> {
+    /// The value of a condition: `Some(true)` or `Some(false)` when the program determines it.
+    fn decide(
+        &self,
+        engine: &Engine<'a>,
+        block: &Block,
+        line: &str,
+        condition: Option<ExprId>,
+    ) -> Option<bool> {
+        let id = condition?;
+        match evaluate(block, line, id, &engine.state.variables) {
+            Ok(Some(value)) => Some(value != 0.0),
+            _ => None,
+        }
+    }
+
+    /// Runs the control statements of `block` (the engine has applied the block already, unless
+    /// `retest`: the arrival at a FOR line from its ENDFOR).
+    pub(super) fn control_statements(
+        &mut self,
+        control: &mut Control,
+        engine: &mut Engine<'a>,
+        unit: &ProgramUnit,
+        pc: usize,
+        block: &Block,
+        retest: bool,
+    ) -> Next {
+        let line = unit.line(pc);
+        let statements = block.interpreted_statements();
+        let mut case_value: Option<Option<f64>> = None;
+        for (index, statement) in statements.iter().enumerate() {
+            match statement {
+                Statement::Structure {
+                    keyword,
+                    condition,
+                    span,
+                } => {
+                    let partner = unit.flow.partner(pc);
+                    match (keyword, partner) {
+                        (StructureKeyword::If, Some(Partner::If { otherwise, end })) => {
+                            let skip_to = otherwise.unwrap_or(end) + 1;
+                            return match self.decide(engine, block, line, *condition) {
+                                Some(true) => Next::Line(pc + 1),
+                                Some(false) => Next::Line(skip_to),
+                                None => {
+                                    self.undecided(control, pc, *span);
+                                    self.fork(control, engine, skip_to);
+                                    Next::Line(pc + 1)
+                                }
+                            };
+                        }
+                        (StructureKeyword::Else, Some(Partner::Else { end })) => {
+                            return Next::Line(end + 1)
+                        }
+                        (StructureKeyword::EndIf, _) => return Next::Line(pc + 1),
+                        (StructureKeyword::While, Some(Partner::Opens { end })) => {
+                            enter_loop(control, pc, end, pc);
+                            let decision = self.decide(engine, block, line, *condition);
+                            return self.loop_test(control, engine, pc, end, decision, *span);
+                        }
+                        (StructureKeyword::For, Some(Partner::Opens { end })) => {
+                            if !retest {
+                                enter_loop(control, pc, end, pc);
+                            }
+                            let decision =
+                                self.for_test(engine, block, line, statements, *condition, retest);
+                            return self.loop_test(control, engine, pc, end, decision, *span);
+                        }
+                        (
+                            StructureKeyword::Repeat | StructureKeyword::Loop,
+                            Some(Partner::Opens { end }),
+                        ) => {
+                            enter_loop(control, pc, end, pc + 1);
+                            return Next::Line(pc + 1);
+                        }
+                        (
+                            StructureKeyword::EndWhile | StructureKeyword::EndLoop,
+                            Some(Partner::Closes { start }),
+                        ) => {
+                            let back_to = if *keyword == StructureKeyword::EndWhile {
+                                start
+                            } else {
+                                start + 1
+                            };
+                            return self.transfer(control, engine, pc, back_to);
+                        }
+                        (StructureKeyword::EndFor, Some(Partner::Closes { start })) => {
+                            control.level_mut().retest_for = Some(start);
+                            return self.transfer(control, engine, pc, start);
+                        }
+                        (StructureKeyword::Until, Some(Partner::Closes { start })) => {
+                            match self.decide(engine, block, line, *condition) {
+                                Some(true) => {
+                                    control.level_mut().loops.pop();
+                                    return Next::Line(pc + 1);
+                                }
+                                Some(false) => {
+                                    return self.transfer(control, engine, pc, start + 1)
+                                }
+                                None => {
+                                    self.undecided(control, pc, *span);
+                                    let depth = control.levels.len() - 1;
+                                    mark_unknown_loop(control, depth, start + 1, pc);
+                                    self.fork(control, engine, pc + 1);
+                                    return self.transfer(control, engine, pc, start + 1);
+                                }
+                            }
+                        }
+                        (StructureKeyword::Case, _) => {
+                            case_value = Some(condition.and_then(|id| {
+                                evaluate(block, line, id, &engine.state.variables)
+                                    .ok()
+                                    .flatten()
+                            }));
+                        }
+                        _ => {
+                            self.report(
+                                control,
+                                pc,
+                                Code::FlowNotFollowed,
+                                *span,
+                                "this control structure does not nest soundly (see S190): from here on the program is read in program order".to_string(),
+                            );
+                            return Next::LoseTrack;
+                        }
+                    }
+                }
+                Statement::Jump {
+                    kind,
+                    target,
+                    condition,
+                    span,
+                } => {
+                    let decision = match (case_value, condition) {
+                        // The branches of CASE: which one matches is not decided statically yet.
+                        (Some(_), _) => None,
+                        (None, None) => Some(true),
+                        (None, Some(_)) => self.decide(engine, block, line, *condition),
+                    };
+                    if decision == Some(false) {
+                        continue;
+                    }
+                    let target_line = match self
+                        .jump_target(engine, unit, block, line, pc, *kind, target)
+                    {
+                        Ok(Some(target_line)) => target_line,
+                        Ok(None) => {
+                            // GOTOS without a restart, GOTOC to a missing target: the program goes on.
+                            continue;
+                        }
+                        Err(()) => {
+                            self.report(
+                                control,
+                                pc,
+                                Code::FlowNotFollowed,
+                                *span,
+                                "the target of this jump is not known statically: from here on the program is read in program order".to_string(),
+                            );
+                            return Next::LoseTrack;
+                        }
+                    };
+                    if decision == Some(true) {
+                        return self.transfer(control, engine, pc, target_line);
+                    }
+                    self.undecided(control, pc, *span);
+                    let last_jump = !statements[index + 1..]
+                        .iter()
+                        .any(|statement| matches!(statement, Statement::Jump { .. }));
+                    if target_line <= pc {
+                        // A backward jump that may or may not be taken: a loop whose passes are not
+                        // known. The way past it waits; this way takes the jump.
+                        let depth = control.levels.len() - 1;
+                        mark_unknown_loop(control, depth, target_line, pc);
+                        if last_jump {
+                            self.fork(control, engine, pc + 1);
+                            return self.transfer(control, engine, pc, target_line);
+                        }
+                    }
+                    self.fork(control, engine, target_line);
+                }
+                Statement::Return { .. } => {
+                    return self.end_level(control, engine, ProgramEnd::Return)
+                }
+                Statement::Address(word) => {
+                    if let Some(end) = ends_program(line, block, word) {
+                        return self.end_level(control, engine, end);
+                    }
+                }
+                _ => {}
+            }
+        }
+        Next::Line(pc + 1)
+    }
+
+    /// A condition the program does not determine: an information finding, once per line.
+    fn undecided(&mut self, control: &Control, pc: usize, span: Span) {
+        self.report(
+            control,
+            pc,
+            Code::ConditionNotKnown,
+            span,
+            "this condition depends on values the program does not determine: both ways are followed, and what differs between them is unknown afterwards".to_string(),
+        );
+    }
+
+    /// The test of a WHILE or FOR at `pc` whose closer is `end`.
+    fn loop_test(
+        &mut self,
+        control: &mut Control,
+        engine: &mut Engine<'a>,
+        pc: usize,
+        end: usize,
+        decision: Option<bool>,
+        span: Span,
+    ) -> Next {
+        match decision {
+            Some(true) => Next::Line(pc + 1),
+            Some(false) => {
+                leave_loop(control, pc);
+                Next::Line(end + 1)
+            }
+            None => {
+                self.undecided(control, pc, span);
+                let depth = control.levels.len() - 1;
+                mark_unknown_loop(control, depth, pc, end);
+                self.fork(control, engine, end + 1);
+                Next::Line(pc + 1)
+            }
+        }
+    }
+
+    /// Whether a FOR loop runs another pass: the counter (counted up first when the test comes from
+    /// ENDFOR) is at most the end value (reference §18.2).
+    fn for_test(
+        &self,
+        engine: &mut Engine<'a>,
+        block: &Block,
+        line: &str,
+        statements: &[Statement],
+        end_value: Option<ExprId>,
+        count_up: bool,
+    ) -> Option<bool> {
+        let (target, target_span) = statements.iter().find_map(|statement| match statement {
+            Statement::Assignment {
+                target,
+                target_span,
+                ..
+            } => Some((target, *target_span)),
+            _ => None,
+        })?;
+        let name = line[target_span.start()..target_span.end()].to_ascii_uppercase();
+        let variables = &mut engine.state.variables;
+        let counter = read_counter(variables, target, &name);
+        let counter = if count_up {
+            let next = counter.map(|value| value + 1.0);
+            write_counter(variables, target, &name, next);
+            next
+        } else {
+            counter
+        };
+        let end_value = end_value.and_then(|id| {
+            evaluate(block, line, id, &engine.state.variables)
+                .ok()
+                .flatten()
+        });
+        let (counter, end_value) = (counter?, end_value?);
+        Some(counter < end_value || real_equal(counter, end_value))
+    }
+
+    /// The line a jump reaches; `Ok(None)` when it goes on with the next block (GOTOS without a
+    /// restart, GOTOC to a missing target), `Err` when the target cannot be known.
+    #[allow(clippy::too_many_arguments)]
+    fn jump_target(
+        &mut self,
+        engine: &Engine<'a>,
+        unit: &ProgramUnit,
+        block: &Block,
+        line: &str,
+        pc: usize,
+        kind: JumpKind,
+        target: &JumpTarget,
+    ) -> Result<Option<usize>, ()> {
+        let _ = (engine, block);
+        if kind == JumpKind::Gotos {
+            return match self.options.gotos_restarts {
+                Some(true) => Ok(Some(unit.flow.first_executable)),
+                Some(false) => Ok(None),
+                None => Err(()),
+            };
+        }
+        let candidates: &[usize] = match target {
+            JumpTarget::Label(span) => {
+                let name = line[span.start()..span.end()].to_ascii_uppercase();
+                unit.flow.label_lines(&name)
+            }
+            JumpTarget::BlockNumber { value, .. } => unit.flow.block_number_lines(*value),
+            JumpTarget::Computed(_) | JumpTarget::None => return Err(()),
+        };
+        match resolve_jump(kind, pc, candidates) {
+            JumpResolution::Found(target_line) => Ok(Some(target_line)),
+            _ if kind == JumpKind::Gotoc => Ok(None),
+            // The control stops with alarm 14080 (reported as W304/W305); nothing runs after it.
+            _ => Err(()),
+        }
+    }
+
+    /// Continues the way at `target` of the same level: forward, or backward as the next pass of a
+    /// loop, counted against the pass limit and checked for a state that never changes.
+    pub(super) fn transfer(
+        &mut self,
+        control: &mut Control,
+        engine: &mut Engine<'a>,
+        pc: usize,
+        target: usize,
+    ) -> Next {
+        let level = control.level_mut();
+        while level
+            .loops
+            .last()
+            .is_some_and(|frame| !(frame.head..=frame.end).contains(&target))
+        {
+            level.loops.pop();
+        }
+        if target > pc {
+            return Next::Line(target);
+        }
+        let depth = control.levels.len() - 1;
+        if let Some(position) = control
+            .unknown_loops
+            .iter()
+            .position(|unknown| unknown.depth == depth && unknown.head == target)
+        {
+            return self.widen(control, engine, position, target);
+        }
+        let level = control.level_mut();
+        let passes = match level.loops.last_mut() {
+            Some(frame) if frame.back_to == target => {
+                frame.passes += 1;
+                frame.passes
+            }
+            _ => match level
+                .jump_passes
+                .iter_mut()
+                .find(|(line, _)| *line == target)
+            {
+                Some((_, passes)) => {
+                    *passes += 1;
+                    *passes
+                }
+                None => {
+                    level.jump_passes.push((target, 1));
+                    1
+                }
+            },
+        };
+        if passes > self.options.max_loop_passes {
+            self.report(
+                control,
+                pc,
+                Code::LoopPassLimit,
+                Span::default(),
+                format!(
+                    "this loop ran {} passes, the configured limit (`max_loop_passes`): what its body changes is unknown after it",
+                    self.options.max_loop_passes
+                ),
+            );
+            mark_unknown_loop(control, depth, target, pc);
+            let position = control.unknown_loops.len() - 1;
+            return self.widen(control, engine, position, target);
+        }
+        if passes % ENDLESS_CHECK_INTERVAL == 0 {
+            let key = (depth, control.level().unit, target);
+            let snapshot = engine.snapshot();
+            if self.loop_heads.get(&key) == Some(&snapshot) {
+                self.report(
+                    control,
+                    pc,
+                    Code::EndlessLoop,
+                    Span::default(),
+                    "this loop never ends: its state at the start of a pass is the same as a thousand passes before, so the control runs it forever and nothing after it is reached on this way".to_string(),
+                );
+                return Next::Stop;
+            }
+            self.loop_heads.insert(key, snapshot);
+        }
+        Next::Line(target)
+    }
+
+    /// The next pass of a loop whose passes are not known: the state at its head joins the state of
+    /// this pass; when nothing changes any more, every way out of the loop has been seen and this way
+    /// ends.
+    fn widen(
+        &mut self,
+        control: &mut Control,
+        engine: &mut Engine<'a>,
+        position: usize,
+        target: usize,
+    ) -> Next {
+        let snapshot = engine.snapshot();
+        let unknown = &mut control.unknown_loops[position];
+        match &mut unknown.state {
+            None => unknown.state = Some(snapshot),
+            Some(stored) => {
+                let mut joined = stored.clone();
+                joined.join(&snapshot);
+                if joined == *stored {
+                    return Next::Stop;
+                }
+                *stored = joined.clone();
+                *engine = self.engine_from(joined);
+            }
+        }
+        Next::Line(target)
+    }
+}
+
+/// Enters the loop `head..=end` unless the way is in it already (a WHILE tests again at its head).
+fn enter_loop(control: &mut Control, head: usize, end: usize, back_to: usize) {
+    let level = control.level_mut();
+    if level.loops.last().is_some_and(|frame| frame.head == head) {
+        return;
+    }
+    level.loops.push(LoopFrame {
+        head,
+        end,
+        back_to,
+        passes: 1,
+    });
+}
+
+fn leave_loop(control: &mut Control, head: usize) {
+    let level = control.level_mut();
+    if level.loops.last().is_some_and(|frame| frame.head == head) {
+        level.loops.pop();
+    }
+}
+
+fn read_counter(variables: &Variables, target: &AssignTarget, name: &str) -> Option<f64> {
+    match target {
+        AssignTarget::RParameter(number) => variables.r_parameter(*number),
+        AssignTarget::Variable { indexes } if indexes.is_empty() => variables.variable(name),
+        _ => None,
+    }
+}
+
+fn write_counter(variables: &mut Variables, target: &AssignTarget, name: &str, value: Option<f64>) {
+    match target {
+        AssignTarget::RParameter(number) => variables.set_r_parameter(*number, value),
+        AssignTarget::Variable { indexes } if indexes.is_empty() => {
+            variables.set_variable(name, value)
+        }
+        _ => {}
+    }
+}

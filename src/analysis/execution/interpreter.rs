@@ -1,0 +1,562 @@
+//! The interpreter's main loop: one way runs block by block; ways that wait run in program order and
+//! are joined where they meet. The decisions of single statements are in `control.rs`, calls and
+//! returns in `calls.rs`.
+
+use crate::analysis::engine::{Engine, EngineSnapshot};
+use crate::analysis::execution::paths::{Activation, Control, UnknownLoop, Way};
+use crate::analysis::execution::program::ProgramUnit;
+use crate::analysis::execution::{
+    EntryState, ExecutedMove, Execution, ExecutionOptions, ProgramEnd,
+};
+use crate::analysis::library::ProgramLibrary;
+use crate::analysis::ProgramKind;
+use crate::config::MachineConfig;
+use crate::diagnostics::{Code, Diagnostic, LineDiagnostic, Span};
+use crate::syntax::ast::{AddressKind, Block, Modifier, Statement};
+use crate::syntax::LineParser;
+use std::collections::{HashMap, HashSet};
+use std::sync::Arc;
+
+/// The G groups a subprogram analysed on its own assumes from the reset state, with the names the
+/// preview uses: motion, plane, units, distance, feed type, diameter programming.
+const ASSUMED_GROUPS: [(u8, &str); 6] = [
+    (1, "motion"),
+    (6, "plane"),
+    (13, "units"),
+    (14, "distance"),
+    (15, "feed_type"),
+    (29, "diameter"),
+];
+
+/// The groups whose assumed value changes how an axis value reads: plane, units, distance,
+/// diameter programming.
+const POSITION_GROUPS: u64 = 1 << 6 | 1 << 13 | 1 << 14 | 1 << 29;
+
+/// Where a way goes after a block.
+pub(super) enum Next {
+    /// The next line of the same level (a transfer within the level is made by the statement).
+    Line(usize),
+    /// The way has been moved already (a call or a return).
+    Moved,
+    /// The way ends here (program end, an endless loop, an alarm).
+    Stop,
+    /// The rest of the program is read in program order from here.
+    LoseTrack,
+}
+
+pub struct Interpreter<'a, 's> {
+    pub(super) config: &'a MachineConfig,
+    pub(super) library: &'a dyn ProgramLibrary,
+    pub(super) options: &'a ExecutionOptions,
+    pub(super) units: Vec<Arc<ProgramUnit>>,
+    /// Lookups of programs by name, misses included.
+    pub(super) unit_names: HashMap<String, Option<usize>>,
+    /// Per program, per line: how often the line was executed.
+    passes: Vec<Vec<u32>>,
+    parser: LineParser,
+    block: Block,
+    /// Where the moves go, in the order the control executes them.
+    sink: &'s mut dyn FnMut(ExecutedMove),
+    /// How often each line of each program runs in the whole run (from a first run that only
+    /// counts), so that a move says its pass only when its block runs more than once; `None`: every
+    /// block runs once (a program without any flow).
+    pass_totals: Option<Vec<Vec<u32>>>,
+    /// The run only counts passes: no move is built.
+    counting: bool,
+    findings: Vec<LineDiagnostic>,
+    reported: HashSet<(usize, Code)>,
+    executed: u64,
+    /// The ways that wait, in no particular order.
+    pending: Vec<Way>,
+    next_fork: u32,
+    assumed: Vec<(&'static str, String)>,
+    /// States seen at the heads of long concrete loops, to find loops whose state never changes.
+    pub(super) loop_heads: HashMap<(usize, usize, usize), EngineSnapshot>,
+    scratch: Vec<Diagnostic>,
+}
+
+impl<'a, 's> Interpreter<'a, 's> {
+    pub fn new(
+        config: &'a MachineConfig,
+        library: &'a dyn ProgramLibrary,
+        options: &'a ExecutionOptions,
+        sink: &'s mut dyn FnMut(ExecutedMove),
+    ) -> Interpreter<'a, 's> {
+        Interpreter {
+            config,
+            library,
+            options,
+            units: Vec::new(),
+            unit_names: HashMap::new(),
+            passes: Vec::new(),
+            parser: LineParser::new(),
+            block: Block::default(),
+            sink,
+            pass_totals: None,
+            counting: false,
+            findings: Vec::new(),
+            reported: HashSet::new(),
+            executed: 0,
+            pending: Vec::new(),
+            next_fork: 0,
+            assumed: Vec::new(),
+            loop_heads: HashMap::new(),
+            scratch: Vec::new(),
+        }
+    }
+
+    pub(super) fn add_unit(&mut self, unit: ProgramUnit) -> usize {
+        self.passes.push(vec![0; unit.line_count()]);
+        self.units.push(Arc::new(unit));
+        self.units.len() - 1
+    }
+
+    pub(super) fn engine_from(&self, snapshot: EngineSnapshot) -> Engine<'a> {
+        let mut engine = Engine::from_snapshot(self.config, snapshot);
+        engine.set_executing(true);
+        engine
+    }
+
+    /// Runs the program `text` from its first block to its end.
+    pub fn run(mut self, text: Arc<str>, kind: ProgramKind) -> Execution {
+        let subprogram = kind == ProgramKind::Subprogram || crate::analysis::has_proc_header(&text);
+        let main = ProgramUnit::new(String::new(), None, text, self.config);
+        self.add_unit(main);
+        let mut engine = Engine::new(self.config);
+        engine.set_executing(true);
+        let mut control = Control {
+            levels: vec![Activation::main(0)],
+            forks: Vec::new(),
+            unknown_loops: Vec::new(),
+            assumed_groups: 0,
+            assumed_axes: 0,
+        };
+        if subprogram {
+            match self.options.entry {
+                EntryState::Reset => {
+                    engine.assume_reset_entry();
+                    for (group, name, value) in reset_assumptions(self.config) {
+                        self.assumed.push((name, value));
+                        control.assumed_groups |= 1 << group;
+                    }
+                }
+                EntryState::Unknown => engine.assume_inherited_state(),
+            }
+        }
+        let mut current = Some((control, engine));
+        loop {
+            let (mut control, mut engine) = match current.take() {
+                Some(way) => way,
+                None => match self.take_first_pending() {
+                    Some(way) => {
+                        let engine = self.engine_from(way.engine);
+                        (way.control, engine)
+                    }
+                    None => break,
+                },
+            };
+            match self.run_way(&mut control, &mut engine) {
+                WayEnd::Stopped => {}
+                WayEnd::LostTrack => {
+                    self.read_rest_in_order(&control, engine);
+                    self.pending.clear();
+                    break;
+                }
+            }
+        }
+        self.finish()
+    }
+
+    fn take_first_pending(&mut self) -> Option<Way> {
+        let first = (0..self.pending.len())
+            .min_by(|&a, &b| self.pending[a].control.order(&self.pending[b].control))?;
+        Some(self.pending.swap_remove(first))
+    }
+
+    /// Runs one way until it ends; switches to a waiting way that comes first and joins the ways
+    /// that meet on the way.
+    fn run_way(&mut self, control: &mut Control, engine: &mut Engine<'a>) -> WayEnd {
+        loop {
+            if !self.pending.is_empty() {
+                self.meet_waiting_ways(control, engine);
+            }
+            if self.executed >= self.options.max_blocks {
+                let line = self.outer_line(control);
+                self.report_at(
+                    line,
+                    Code::ExecutionBudgetUsed,
+                    Span::default(),
+                    format!(
+                        "{} blocks were executed, the configured budget (`max_blocks`): from here on the program is read in program order and its values are uncertain",
+                        self.executed
+                    ),
+                );
+                return WayEnd::LostTrack;
+            }
+            match self.step(control, engine) {
+                Next::Line(line) => control.level_mut().pc = line,
+                Next::Moved => {}
+                Next::Stop => return WayEnd::Stopped,
+                Next::LoseTrack => return WayEnd::LostTrack,
+            }
+            control.leave_loops();
+        }
+    }
+
+    /// Joins the waiting ways that are where `control` is, and switches to one that comes first.
+    fn meet_waiting_ways(&mut self, control: &mut Control, engine: &mut Engine<'a>) {
+        let mut index = 0;
+        while index < self.pending.len() {
+            if self.pending[index].control.meets(control) {
+                let way = self.pending.swap_remove(index);
+                let mut snapshot = engine.snapshot();
+                snapshot.join(&way.engine);
+                *engine = self.engine_from(snapshot);
+                control.join(&way.control);
+            } else {
+                index += 1;
+            }
+        }
+        let first = (0..self.pending.len())
+            .min_by(|&a, &b| self.pending[a].control.order(&self.pending[b].control));
+        if let Some(first) = first {
+            if self.pending[first].control.order(control) == std::cmp::Ordering::Less {
+                let way = self.pending.swap_remove(first);
+                let waiting = Way {
+                    control: std::mem::replace(control, way.control),
+                    engine: engine.snapshot(),
+                };
+                *engine = self.engine_from(way.engine);
+                self.pending.push(waiting);
+            }
+        }
+    }
+
+    /// Lets a second way wait at `line` of the current level: the way the program takes when the
+    /// undecided condition goes the other way. Both ways depend on the decision from now on.
+    pub(super) fn fork(&mut self, control: &mut Control, engine: &Engine<'a>, line: usize) {
+        let decision = self.next_fork;
+        self.next_fork += 1;
+        let mut other = control.clone();
+        other.forks.push((decision, false));
+        control.forks.push((decision, true));
+        other.level_mut().pc = line;
+        // Loops the other way leaves are loops whose passes are not known on this way.
+        let depth = control.levels.len() - 1;
+        let leaving: Vec<(usize, usize)> = control
+            .level()
+            .loops
+            .iter()
+            .filter(|frame| !(frame.head..=frame.end).contains(&line))
+            .map(|frame| (frame.back_to, frame.end))
+            .collect();
+        for (head, end) in leaving {
+            mark_unknown_loop(control, depth, head, end);
+        }
+        let level = other.level_mut();
+        while level
+            .loops
+            .last()
+            .is_some_and(|frame| !(frame.head..=frame.end).contains(&line))
+        {
+            level.loops.pop();
+        }
+        other.leave_loops();
+        let way = Way {
+            control: other,
+            engine: engine.snapshot(),
+        };
+        if let Some(waiting) = self
+            .pending
+            .iter_mut()
+            .find(|waiting| waiting.control.meets(&way.control))
+        {
+            waiting.engine.join(&way.engine);
+            waiting.control.join(&way.control);
+        } else {
+            self.pending.push(way);
+        }
+    }
+
+    /// Runs the block at the current line of `control`'s innermost level.
+    fn step(&mut self, control: &mut Control, engine: &mut Engine<'a>) -> Next {
+        let unit_index = control.level().unit;
+        let unit = Arc::clone(&self.units[unit_index]);
+        let pc = control.level().pc;
+        if pc >= unit.line_count() {
+            // A program that ends without M17/RET/M30 ends at its last block.
+            return self.end_level(control, engine, ProgramEnd::Return);
+        }
+        let mut block = std::mem::take(&mut self.block);
+        unit.parse(&mut self.parser, pc, &mut block);
+        self.executed += 1;
+        self.passes[unit_index][pc] += 1;
+        let line = unit.line(pc);
+        let retest = control.level().retest_for == Some(pc);
+        let next = if retest {
+            control.level_mut().retest_for = None;
+            self.control_statements(control, engine, &unit, pc, &block, true)
+        } else {
+            let call = self.prepare_call(control, engine, &unit, pc, &block);
+            if call.is_some() {
+                engine.follow_call_of_next_block();
+            }
+            self.scratch.clear();
+            let moved = engine.step(line, &block, &mut self.scratch);
+            self.update_assumptions(control, engine, line, &block);
+            if moved && !self.counting && !control.widening() {
+                self.record_move(control, engine, unit_index, pc, line, &block);
+            }
+            let modal = self.modal_call_after(control, engine, &block, pc, moved);
+            match (call, modal) {
+                (Some(call), _) | (None, Some(call)) => {
+                    control.level_mut().pc = pc + 1;
+                    self.enter(control, engine, call)
+                }
+                (None, None) => self.control_statements(control, engine, &unit, pc, &block, false),
+            }
+        };
+        self.block = block;
+        next
+    }
+
+    fn record_move(
+        &mut self,
+        control: &Control,
+        engine: &Engine<'a>,
+        unit_index: usize,
+        pc: usize,
+        line: &str,
+        block: &Block,
+    ) {
+        let movement = engine.describe_last_move(pc, line, block);
+        let assumed = if control.assumed_axes == 0 {
+            Vec::new()
+        } else {
+            let names = &self.config.axes;
+            movement
+                .end
+                .iter()
+                .filter(|(name, _)| {
+                    names
+                        .iter()
+                        .position(|axis| axis.name.as_str() == name.as_ref())
+                        .is_some_and(|index| index < 64 && control.assumed_axes & 1 << index != 0)
+                })
+                .map(|(name, _)| name.clone())
+                .collect()
+        };
+        let level = control.level();
+        let pass = self.pass_of(unit_index, pc);
+        (self.sink)(ExecutedMove {
+            movement,
+            path: self.units[unit_index].path.clone(),
+            stack: Arc::clone(&level.stack),
+            pass,
+            conditional: !control.forks.is_empty(),
+            assumed,
+        });
+    }
+
+    /// Follows which groups still have their assumed value and which axes rest on them.
+    fn update_assumptions(
+        &self,
+        control: &mut Control,
+        engine: &Engine<'a>,
+        line: &str,
+        block: &Block,
+    ) {
+        if control.assumed_groups == 0 && control.assumed_axes == 0 {
+            return;
+        }
+        let statements = block.interpreted_statements();
+        for statement in statements {
+            if let Statement::GCode { code, .. } = statement {
+                if code.is_modal() {
+                    control.assumed_groups &= !(1u64 << code.group());
+                }
+            }
+        }
+        let depends = control.assumed_groups & POSITION_GROUPS != 0;
+        let written = engine.written_axes();
+        let incremental_mode = engine.state.is_incremental();
+        let mut incremental_axes = 0u64;
+        for statement in statements {
+            if let Statement::Address(word) = statement {
+                if word.kind != AddressKind::Axis {
+                    continue;
+                }
+                let Some(index) = engine.axis_lookup().index(self.config, line, word) else {
+                    continue;
+                };
+                let incremental = match word.value.modifier.map(|(modifier, _)| modifier) {
+                    Some(Modifier::Ic | Modifier::Dic | Modifier::Ric | Modifier::Cic) => true,
+                    Some(_) => false,
+                    None => incremental_mode != Some(false),
+                };
+                if incremental && index < 64 {
+                    incremental_axes |= 1 << index;
+                }
+            }
+        }
+        for (index, kind) in written.iter().enumerate().take(64) {
+            if *kind == 0 {
+                continue;
+            }
+            let bit = 1u64 << index;
+            let keeps = control.assumed_axes & bit != 0 && incremental_axes & bit != 0;
+            if depends || keeps {
+                control.assumed_axes |= bit;
+            } else {
+                control.assumed_axes &= !bit;
+            }
+        }
+    }
+
+    /// The line of the analysed program where the way is: its own line, or the outermost call.
+    pub(super) fn outer_line(&self, control: &Control) -> usize {
+        control.levels[0]
+            .pc
+            .min(self.units[0].line_count().saturating_sub(1))
+    }
+
+    /// A finding at `line` of `unit` on the current way: at that line in the analysed program, else
+    /// at the outermost call, naming the program and line where it happened.
+    pub(super) fn report(
+        &mut self,
+        control: &Control,
+        pc: usize,
+        code: Code,
+        span: Span,
+        message: String,
+    ) {
+        if control.levels.len() == 1 {
+            self.report_at(pc, code, span, message);
+            return;
+        }
+        let level = control.level();
+        let call_line = level.stack.first().map_or(pc, |site| site.line);
+        let name = &self.units[level.unit].name;
+        let message = format!("in {name} (line {}): {message}", pc + 1);
+        let length = self.units[0].line(call_line).len();
+        self.report_at(call_line, code, Span::new(0, length), message);
+    }
+
+    pub(super) fn report_at(&mut self, line: usize, code: Code, span: Span, message: String) {
+        if !self.reported.insert((line, code)) {
+            return;
+        }
+        let span = if span.is_empty() {
+            Span::new(0, self.units[0].line(line).len())
+        } else {
+            span
+        };
+        let mut diagnostic = Diagnostic::new(code, span, message);
+        diagnostic.severity = self.config.severity_of(code);
+        self.findings.push(LineDiagnostic { line, diagnostic });
+    }
+
+    /// Reads the rest of the analysed program in program order, after the way was lost: values that
+    /// depend on the program's flow are uncertain from here on.
+    fn read_rest_in_order(&mut self, control: &Control, mut engine: Engine<'a>) {
+        engine.set_executing(false);
+        engine.mark_flow_uncertain();
+        if control.levels.len() > 1 {
+            engine.forget_after_unknown_call();
+        }
+        let unit = Arc::clone(&self.units[0]);
+        let start = control.levels[0].pc + usize::from(control.levels.len() == 1);
+        let mut block = std::mem::take(&mut self.block);
+        let stack: Arc<[crate::analysis::execution::CallSite]> = Arc::from(Vec::new());
+        for pc in start..unit.line_count() {
+            unit.parse(&mut self.parser, pc, &mut block);
+            self.passes[0][pc] += 1;
+            self.scratch.clear();
+            let line = unit.line(pc);
+            if engine.step(line, &block, &mut self.scratch) && !self.counting {
+                let pass = self.pass_of(0, pc);
+                (self.sink)(ExecutedMove {
+                    movement: engine.describe_last_move(pc, line, &block),
+                    path: None,
+                    stack: Arc::clone(&stack),
+                    pass,
+                    conditional: false,
+                    assumed: Vec::new(),
+                });
+            }
+        }
+        self.block = block;
+    }
+
+    /// The pass number of the execution of `line` of `unit` just counted: 0 when the block runs once
+    /// in the whole run.
+    fn pass_of(&self, unit: usize, line: usize) -> u32 {
+        let total = self
+            .pass_totals
+            .as_ref()
+            .and_then(|totals| totals.get(unit)?.get(line).copied())
+            .unwrap_or(1);
+        if total <= 1 {
+            0
+        } else {
+            self.passes[unit][line]
+        }
+    }
+
+    /// Makes this run one that only counts how often each block runs.
+    pub fn counting_only(mut self) -> Self {
+        self.counting = true;
+        self
+    }
+
+    /// Gives this run the pass counts of an earlier counting run of the same program.
+    pub fn with_pass_totals(mut self, totals: Vec<Vec<u32>>) -> Self {
+        self.pass_totals = Some(totals);
+        self
+    }
+
+    fn finish(mut self) -> Execution {
+        self.findings
+            .sort_by_key(|item| (item.line, item.diagnostic.span.start()));
+        Execution {
+            findings: self.findings,
+            assumed: self.assumed,
+            executed_blocks: self.executed,
+            pass_totals: self.passes,
+            has_flow: self.units.first().is_some_and(|unit| unit.flow.has_flow),
+        }
+    }
+}
+
+enum WayEnd {
+    Stopped,
+    LostTrack,
+}
+
+/// The groups a subprogram analysed on its own assumes, with their reset values on this machine.
+pub(super) fn reset_assumptions(config: &MachineConfig) -> Vec<(u8, &'static str, String)> {
+    let reset = crate::analysis::state::ModalState::reset(config);
+    ASSUMED_GROUPS
+        .iter()
+        .filter_map(|&(group, name)| {
+            let code = reset.groups[group as usize]?;
+            Some((group, name, code.name().to_string()))
+        })
+        .collect()
+}
+
+/// Marks the loop `head..=end` of level `depth` as one whose number of passes is not known.
+pub(super) fn mark_unknown_loop(control: &mut Control, depth: usize, head: usize, end: usize) {
+    if !control
+        .unknown_loops
+        .iter()
+        .any(|unknown| unknown.depth == depth && unknown.head == head)
+    {
+        control.unknown_loops.push(UnknownLoop {
+            depth,
+            head,
+            end,
+            state: None,
+        });
+    }
+}

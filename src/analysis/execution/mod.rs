@@ -1,0 +1,215 @@
+//! Running a program the way the control runs it: loops for as many passes as the control makes,
+//! jumps to labels and block numbers, `IF`/`CASE` decisions, subprogram calls with their parameters,
+//! repetitions and returns. Every executed block goes through the [`Engine`](crate::analysis::Engine),
+//! so each execution of a block has the modal state the control has there.
+//!
+//! Where a decision depends on what the program does not contain (main-run variables, machine data),
+//! every way is followed and the ways are joined where they meet: what is equal on every way stays
+//! known, what differs becomes unknown. A loop whose number of passes is not known is run until its
+//! state no longer changes (each pass forgets what differs), so that only what its body changes
+//! becomes unknown. A budget of executed blocks bounds the work; past it the rest of the program is
+//! read in program order, as values that are uncertain.
+
+mod calls;
+mod control;
+mod interpreter;
+mod paths;
+pub mod program;
+
+use crate::analysis::library::ProgramLibrary;
+use crate::analysis::{Move, ProgramKind};
+use crate::config::MachineConfig;
+use crate::diagnostics::LineDiagnostic;
+use crate::syntax::ast::{AddressKind, AddressWord, Block, ValueExpr};
+use std::sync::Arc;
+
+/// How a subprogram analysed on its own starts.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum EntryState {
+    /// The machine's reset state (MD20150), as an explicit assumption: every value that rests on it
+    /// says so.
+    Reset,
+    /// The caller's state, unknown: values that depend on it stay unknown.
+    Unknown,
+}
+
+/// The limits and choices of the interpreter; each comes from `sinumerik.toml` (`[execution]`).
+#[derive(Debug, Clone, PartialEq)]
+pub struct ExecutionOptions {
+    /// Executed blocks after which the rest is read in program order.
+    pub max_blocks: u64,
+    /// Passes of one loop after which what its body changes is unknown (reference §18.6).
+    pub max_loop_passes: u32,
+    /// Program levels, the main program included (reference §17.3: 16).
+    pub max_levels: usize,
+    pub entry: EntryState,
+    /// Whether M2/M30 in a subprogram end only that subprogram, like M17 (reference §17.4) or the
+    /// whole program.
+    pub m30_ends_subprogram: bool,
+    /// Whether the PLC requests the restart of `GOTOS` (reference §17.7): `Some(false)` (the
+    /// default) never, `Some(true)` always, `None` unknown (both ways are followed).
+    pub gotos_restarts: Option<bool>,
+}
+
+impl Default for ExecutionOptions {
+    fn default() -> ExecutionOptions {
+        ExecutionOptions {
+            max_blocks: 20_000_000,
+            max_loop_passes: 10_000,
+            max_levels: 16,
+            entry: EntryState::Reset,
+            m30_ends_subprogram: true,
+            gotos_restarts: Some(false),
+        }
+    }
+}
+
+/// Where a called program was called from.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct CallSite {
+    /// The file of the calling program; `None` for the analysed program.
+    pub path: Option<Arc<str>>,
+    /// The 0-based line of the call in that file.
+    pub line: usize,
+}
+
+/// One execution of a block that moves axes.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ExecutedMove {
+    /// The move; its `line` is the line in `path` (in the analysed program when `path` is `None`).
+    pub movement: Move,
+    /// The file of the called program that made the move; `None` for the analysed program.
+    pub path: Option<Arc<str>>,
+    /// The calls that led to the move, outermost first.
+    pub stack: Arc<[CallSite]>,
+    /// Which execution of its block this is (1, 2, ...), 0 when the block runs once only.
+    pub pass: u32,
+    /// The move lies on a way whose condition the analysis could not decide.
+    pub conditional: bool,
+    /// The axes whose value rests on the assumed entry state.
+    pub assumed: Vec<Arc<str>>,
+}
+
+impl ExecutedMove {
+    /// The line of the analysed program that caused the move: the outermost call, or its own line.
+    pub fn outer_line(&self) -> usize {
+        self.stack
+            .first()
+            .map_or(self.movement.line, |site| site.line)
+    }
+}
+
+/// What running a program gave besides its moves.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct Execution {
+    /// Findings of the run, at lines of the analysed program (a finding inside a called program is
+    /// reported at the call).
+    pub findings: Vec<LineDiagnostic>,
+    /// What was assumed about the entry state: (`"units"`, `"G71"`), (`"distance"`, `"G90"`), ...
+    pub assumed: Vec<(&'static str, String)>,
+    /// How many blocks were executed.
+    pub executed_blocks: u64,
+    /// Per program (the analysed one first, then the called ones in the order they were first
+    /// called), per line: how often it was executed.
+    pub pass_totals: Vec<Vec<u32>>,
+    /// Whether the analysed program has labels, jumps, control structures or calls: without them it
+    /// runs in program order, every block once.
+    pub has_flow: bool,
+}
+
+impl Execution {
+    /// How often line `line` of the analysed program was executed.
+    pub fn passes_of_line(&self, line: usize) -> u32 {
+        self.pass_totals
+            .first()
+            .and_then(|lines| lines.get(line).copied())
+            .unwrap_or(0)
+    }
+}
+
+/// How a block ends a program level, if it does.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum ProgramEnd {
+    /// `M17` or `RET`: the end of a subprogram.
+    Return,
+    /// `M2` or `M30`: the end of the main program.
+    End,
+}
+
+/// Whether the address word `word` of `block` is M2, M30 or M17.
+pub fn ends_program(line: &str, block: &Block, word: &AddressWord) -> Option<ProgramEnd> {
+    let _ = block;
+    if word.kind != AddressKind::MFunction || word.extension.is_some() {
+        return None;
+    }
+    let value = match word.value.expr {
+        ValueExpr::Constant { value, .. } => value,
+        _ => return None,
+    };
+    let _ = line;
+    if value == 17.0 {
+        Some(ProgramEnd::Return)
+    } else if value == 2.0 || value == 30.0 {
+        Some(ProgramEnd::End)
+    } else {
+        None
+    }
+}
+
+/// Runs the program `text` (of `kind`) on `config`, calling programs `library` finds, and hands every
+/// executed move to `visit` in the order the control executes them. A program with loops, jumps or
+/// calls is run twice: first only counting how often each block runs (so that each move can say
+/// its pass), then for its moves; a program without them runs once.
+pub fn execute(
+    text: &str,
+    config: &MachineConfig,
+    kind: ProgramKind,
+    library: &dyn ProgramLibrary,
+    options: &ExecutionOptions,
+    visit: &mut dyn FnMut(ExecutedMove),
+) -> Execution {
+    let text: Arc<str> = Arc::from(text);
+    let mut ignore = |_: ExecutedMove| {};
+    let counted = interpreter::Interpreter::new(config, library, options, &mut ignore)
+        .counting_only()
+        .run(Arc::clone(&text), kind);
+    if !counted.has_flow {
+        return interpreter::Interpreter::new(config, library, options, visit).run(text, kind);
+    }
+    interpreter::Interpreter::new(config, library, options, visit)
+        .with_pass_totals(counted.pass_totals)
+        .run(text, kind)
+}
+
+/// What the run of `text` assumes about its entry state: for a subprogram analysed on its own with
+/// [`EntryState::Reset`], the reset values of the groups that decide how its values read.
+pub fn entry_assumptions(
+    text: &str,
+    config: &MachineConfig,
+    kind: ProgramKind,
+    options: &ExecutionOptions,
+) -> Vec<(&'static str, String)> {
+    let subprogram = kind == ProgramKind::Subprogram || crate::analysis::has_proc_header(text);
+    if !subprogram || options.entry != EntryState::Reset {
+        return Vec::new();
+    }
+    interpreter::reset_assumptions(config)
+        .into_iter()
+        .map(|(_, name, value)| (name, value))
+        .collect()
+}
+
+/// Runs a program like [`execute`] and keeps its moves.
+pub fn execute_collecting(
+    text: &str,
+    config: &MachineConfig,
+    kind: ProgramKind,
+    library: &dyn ProgramLibrary,
+    options: &ExecutionOptions,
+) -> (Execution, Vec<ExecutedMove>) {
+    let mut moves = Vec::new();
+    let execution = execute(text, config, kind, library, options, &mut |movement| {
+        moves.push(movement)
+    });
+    (execution, moves)
+}

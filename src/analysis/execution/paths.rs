@@ -1,0 +1,217 @@
+//! The ways through a program the interpreter follows: where each way is (a program counter per
+//! program level), the loops it is in, and the decisions it depends on. Ways wait in program order
+//! and are joined when they reach the same place.
+
+use crate::analysis::engine::EngineSnapshot;
+use crate::analysis::eval::Variables;
+use crate::analysis::execution::CallSite;
+use crate::analysis::frame::Frame;
+use crate::analysis::state::GROUP_COUNT;
+use crate::syntax::gcodes::GCode;
+use std::sync::Arc;
+
+/// A loop of a control structure that a way is in.
+#[derive(Debug, Clone, PartialEq)]
+pub struct LoopFrame {
+    /// The line of the opener (`WHILE`, `FOR`, `REPEAT`, `LOOP`) and of its closer.
+    pub head: usize,
+    pub end: usize,
+    /// Where the closer sends the next pass: the opener for WHILE and FOR (which test again), the
+    /// line after it for REPEAT and LOOP.
+    pub back_to: usize,
+    /// Passes started so far.
+    pub passes: u32,
+}
+
+/// What a `SAVE` subprogram restores on its return (reference §8.3).
+#[derive(Debug, Clone, PartialEq)]
+pub struct SavedModal {
+    pub groups: [Option<GCode>; GROUP_COUNT],
+    pub frame: Option<Frame>,
+}
+
+/// A call in progress: what the return needs.
+#[derive(Debug, Clone, PartialEq)]
+pub struct CallFrame {
+    /// Passes of the subprogram still to run after this one (`P`).
+    pub repetitions_left: u32,
+    pub saved: Option<SavedModal>,
+    /// The caller's own variables, put aside while the subprogram runs.
+    pub caller_locals: Variables,
+    /// By-reference parameters: the subprogram's name and the caller's variable (upper case; an R
+    /// parameter as `R<n>`).
+    pub references: Vec<(String, String)>,
+}
+
+/// One program level of a way.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Activation {
+    /// The program it runs (index into the interpreter's programs).
+    pub unit: usize,
+    /// The line to run next.
+    pub pc: usize,
+    pub loops: Vec<LoopFrame>,
+    /// The call that started this level; `None` for the main level.
+    pub call: Option<Box<CallFrame>>,
+    /// The next arrival at this FOR line comes from its ENDFOR: the counter is counted up and tested,
+    /// the start value is not assigned again.
+    pub retest_for: Option<usize>,
+    /// The modal call (`MCALL NAME(..)`) active on this level.
+    pub modal_call: Option<ModalCall>,
+    /// Backward jumps taken to each target line (for the pass limit of loops made of jumps).
+    pub jump_passes: Vec<(usize, u32)>,
+    /// The calls that led here, outermost first (shared by every move of the level).
+    pub stack: Arc<[CallSite]>,
+}
+
+impl Activation {
+    pub fn main(unit: usize) -> Activation {
+        Activation {
+            unit,
+            pc: 0,
+            loops: Vec::new(),
+            call: None,
+            retest_for: None,
+            modal_call: None,
+            jump_passes: Vec::new(),
+            stack: Arc::from(Vec::new()),
+        }
+    }
+}
+
+/// An argument of a call: left out (`SUB(1,,3)`, or missing at the end), or given (its value, `None`
+/// when unknown).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Argument {
+    Omitted,
+    Given(Option<f64>),
+}
+
+/// A modal call: the program and the arguments, evaluated when `MCALL` was programmed.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ModalCall {
+    pub name: String,
+    pub arguments: Vec<Argument>,
+}
+
+/// A loop whose number of passes is not known, on one level: its lines, and the state at its head
+/// joined over the passes seen so far.
+#[derive(Debug, Clone, PartialEq)]
+pub struct UnknownLoop {
+    pub depth: usize,
+    pub head: usize,
+    pub end: usize,
+    pub state: Option<EngineSnapshot>,
+}
+
+/// Everything about a way except the engine's state.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Control {
+    pub levels: Vec<Activation>,
+    /// The undecided conditions this way depends on: (decision, which way).
+    pub forks: Vec<(u32, bool)>,
+    pub unknown_loops: Vec<UnknownLoop>,
+    /// The G groups (bits by group number) whose value is still the assumed entry state.
+    pub assumed_groups: u64,
+    /// The axes (bits by configured index) whose value rests on the assumed entry state.
+    pub assumed_axes: u64,
+}
+
+impl Control {
+    pub fn level(&self) -> &Activation {
+        self.levels
+            .last()
+            .expect("a way has at least its main level")
+    }
+
+    pub fn level_mut(&mut self) -> &mut Activation {
+        self.levels
+            .last_mut()
+            .expect("a way has at least its main level")
+    }
+
+    /// Whether the way lies inside a loop whose passes are not known, where moves are not shown
+    /// again (its first pass was shown).
+    pub fn widening(&self) -> bool {
+        let depth = self.levels.len() - 1;
+        let pc = self.level().pc;
+        self.unknown_loops.iter().any(|unknown| {
+            unknown.state.is_some()
+                && (unknown.depth < depth || (unknown.head..=unknown.end).contains(&pc))
+        })
+    }
+
+    /// Drops the unknown loops that the way has left.
+    pub fn leave_loops(&mut self) {
+        let depth = self.levels.len() - 1;
+        let pc = self.level().pc;
+        self.unknown_loops.retain(|unknown| {
+            unknown.depth < depth
+                || (unknown.depth == depth && (unknown.head..=unknown.end).contains(&pc))
+        });
+    }
+
+    /// Which of two ways comes first in the program: the one whose program counters are smaller,
+    /// level by level from the main level down; a way still inside a call comes before a way at the
+    /// line the call returns to.
+    pub fn order(&self, other: &Control) -> std::cmp::Ordering {
+        for (mine, theirs) in self.levels.iter().zip(&other.levels) {
+            let order = (mine.pc, mine.unit).cmp(&(theirs.pc, theirs.unit));
+            if order != std::cmp::Ordering::Equal {
+                return order;
+            }
+        }
+        other.levels.len().cmp(&self.levels.len())
+    }
+
+    /// Whether two ways can continue as one: the same place, in the same loops and calls.
+    pub fn meets(&self, other: &Control) -> bool {
+        self.levels.len() == other.levels.len()
+            && self.levels.iter().zip(&other.levels).all(|(mine, theirs)| {
+                mine.unit == theirs.unit
+                    && mine.pc == theirs.pc
+                    && mine.loops == theirs.loops
+                    && mine.retest_for == theirs.retest_for
+                    && mine.modal_call == theirs.modal_call
+                    && mine.call.as_ref().map(|call| call.repetitions_left)
+                        == theirs.call.as_ref().map(|call| call.repetitions_left)
+            })
+    }
+
+    /// Joins what the two ways know about their decisions: a decision both ways took differently is
+    /// no longer one this way depends on.
+    pub fn join(&mut self, other: &Control) {
+        self.forks.retain(|fork| other.forks.contains(fork));
+        self.assumed_groups |= other.assumed_groups;
+        self.assumed_axes |= other.assumed_axes;
+        for unknown in &other.unknown_loops {
+            if !self.unknown_loops.iter().any(|mine| {
+                mine.depth == unknown.depth && mine.head == unknown.head && mine.end == unknown.end
+            }) {
+                self.unknown_loops.push(unknown.clone());
+            }
+        }
+        for (mine, theirs) in self.levels.iter_mut().zip(&other.levels) {
+            if let (Some(mine), Some(theirs)) = (mine.call.as_mut(), theirs.call.as_ref()) {
+                mine.caller_locals.join(&theirs.caller_locals);
+                if let (Some(saved), Some(other_saved)) = (mine.saved.as_mut(), &theirs.saved) {
+                    for (group, other_group) in saved.groups.iter_mut().zip(&other_saved.groups) {
+                        if group != other_group {
+                            *group = None;
+                        }
+                    }
+                    if saved.frame != other_saved.frame {
+                        saved.frame = None;
+                    }
+                }
+            }
+        }
+    }
+}
+
+/// A way waiting to run: its control and its engine state.
+#[derive(Debug, Clone)]
+pub struct Way {
+    pub control: Control,
+    pub engine: EngineSnapshot,
+}

@@ -1,0 +1,241 @@
+//! One program as the interpreter runs it: its text split into blocks, and the index of where control
+//! can go (labels, block numbers, the partners of every control structure), built once per program.
+
+use crate::config::MachineConfig;
+use crate::syntax::ast::{Block, Statement, StructureKeyword};
+use crate::syntax::{lines, macro_names, LineParser, SyntaxContext};
+use std::collections::HashMap;
+use std::sync::Arc;
+
+/// Where the other keywords of a control structure are, by the line of each keyword.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Partner {
+    /// An `IF`: its `ELSE` (if any) and its `ENDIF`.
+    If {
+        otherwise: Option<usize>,
+        end: usize,
+    },
+    /// An `ELSE`: the `ENDIF` of its `IF`.
+    Else { end: usize },
+    /// A loop opener (`WHILE`, `FOR`, `REPEAT`, `LOOP`): its closer.
+    Opens { end: usize },
+    /// A loop closer (`ENDWHILE`, `ENDFOR`, `UNTIL`, `ENDLOOP`): its opener.
+    Closes { start: usize },
+}
+
+/// Where control can go in one program.
+#[derive(Debug, Clone, Default)]
+pub struct FlowIndex {
+    /// The lines that carry each label (upper case), in ascending order.
+    labels: HashMap<String, Vec<usize>>,
+    /// The lines that carry each block number, in ascending order.
+    block_numbers: HashMap<u64, Vec<usize>>,
+    /// The partners of every structure keyword whose nesting is sound.
+    partners: HashMap<usize, Partner>,
+    /// Whether the program has anything that makes execution differ from program order: labels,
+    /// jumps, control structures, calls, returns or program ends before the last block.
+    pub has_flow: bool,
+    /// The first line after the definition part (DEF, DEFINE, PROC and comments): where `GOTOS`
+    /// starts again.
+    pub first_executable: usize,
+}
+
+impl FlowIndex {
+    /// The lines carrying `label` (upper case).
+    pub fn label_lines(&self, label: &str) -> &[usize] {
+        self.labels.get(label).map_or(&[], Vec::as_slice)
+    }
+
+    /// The lines carrying block number `value`.
+    pub fn block_number_lines(&self, value: u64) -> &[usize] {
+        self.block_numbers.get(&value).map_or(&[], Vec::as_slice)
+    }
+
+    /// The partners of the structure keyword on `line`, when its nesting is sound.
+    pub fn partner(&self, line: usize) -> Option<Partner> {
+        self.partners.get(&line).copied()
+    }
+}
+
+/// One program: its name, where it came from, its text and its flow index.
+#[derive(Debug)]
+pub struct ProgramUnit {
+    /// The upper-case name a call uses (empty for the analysed program when it has no name).
+    pub name: String,
+    /// Where the program was found; `None` for the program being analysed.
+    pub path: Option<Arc<str>>,
+    text: Arc<str>,
+    lines: Vec<(u32, u32)>,
+    pub flow: FlowIndex,
+    context: SyntaxContext,
+}
+
+impl ProgramUnit {
+    /// Reads `text` as a program: its lines, and the flow index from one parse of every line.
+    pub fn new(
+        name: String,
+        path: Option<Arc<str>>,
+        text: Arc<str>,
+        config: &MachineConfig,
+    ) -> ProgramUnit {
+        let lines: Vec<(u32, u32)> = lines::line_ranges(&text)
+            .map(|(start, end)| (start as u32, end as u32))
+            .collect();
+        let mut context = SyntaxContext::new(config);
+        for name in macro_names(&text) {
+            context.add_macro(name);
+        }
+        let mut unit = ProgramUnit {
+            name,
+            path,
+            text,
+            lines,
+            flow: FlowIndex::default(),
+            context,
+        };
+        unit.flow = unit.build_flow_index();
+        unit
+    }
+
+    pub fn line_count(&self) -> usize {
+        self.lines.len()
+    }
+
+    /// The text of line `index` without its terminator.
+    pub fn line(&self, index: usize) -> &str {
+        match self.lines.get(index) {
+            Some(&(start, end)) => &self.text[start as usize..end as usize],
+            None => "",
+        }
+    }
+
+    /// Parses line `index` into `block` (its syntax findings are dropped: the program's linear
+    /// reading reports them).
+    pub fn parse(&self, parser: &mut LineParser, index: usize, block: &mut Block) {
+        let mut findings = Vec::new();
+        parser.parse(self.line(index), &self.context, block, &mut findings);
+    }
+
+    fn build_flow_index(&self) -> FlowIndex {
+        let mut flow = FlowIndex::default();
+        let mut parser = LineParser::new();
+        let mut block = Block::default();
+        // Open structures: (keyword, line, the ELSE line of an IF).
+        let mut open: Vec<(StructureKeyword, usize, Option<usize>)> = Vec::new();
+        let mut broken = false;
+        let mut in_definitions = true;
+        let last_line = self.line_count().saturating_sub(1);
+        for index in 0..self.line_count() {
+            self.parse(&mut parser, index, &mut block);
+            if let Some(label) = block.label {
+                let name = self.line(index)[label.start()..label.end()].to_ascii_uppercase();
+                flow.labels.entry(name).or_default().push(index);
+                flow.has_flow = true;
+            }
+            if let Some(number) = block.number {
+                flow.block_numbers
+                    .entry(number.value)
+                    .or_default()
+                    .push(index);
+            }
+            let statements = block.interpreted_statements();
+            let mut executable = false;
+            for statement in statements {
+                match statement {
+                    Statement::Definition { .. }
+                    | Statement::MacroDefinition { .. }
+                    | Statement::ProcedureHeader { .. }
+                    | Statement::ExternDeclaration { .. } => {}
+                    _ => executable = true,
+                }
+                match statement {
+                    Statement::Structure { keyword, .. } => {
+                        flow.has_flow = true;
+                        broken |= !link_structure(&mut flow, &mut open, *keyword, index);
+                    }
+                    Statement::Jump { .. }
+                    | Statement::Call { .. }
+                    | Statement::Return { .. }
+                    | Statement::Instruction { .. } => flow.has_flow = true,
+                    Statement::Address(word) if index != last_line => {
+                        flow.has_flow |= crate::analysis::execution::ends_program(
+                            self.line(index),
+                            &block,
+                            word,
+                        )
+                        .is_some();
+                    }
+                    _ => {}
+                }
+            }
+            if in_definitions && executable {
+                in_definitions = false;
+                flow.first_executable = index;
+            }
+        }
+        if in_definitions {
+            flow.first_executable = self.line_count();
+        }
+        if broken || !open.is_empty() {
+            // Structures that do not nest soundly are reported by the syntax check (12640); the
+            // interpreter does not follow them: their lines have no partners.
+            flow.partners.retain(|_, _| false);
+            flow.has_flow = true;
+        }
+        flow
+    }
+}
+
+/// Records the partners of a structure keyword on `line`; false when the nesting is broken.
+fn link_structure(
+    flow: &mut FlowIndex,
+    open: &mut Vec<(StructureKeyword, usize, Option<usize>)>,
+    keyword: StructureKeyword,
+    line: usize,
+) -> bool {
+    use StructureKeyword::*;
+    match keyword {
+        If | While | For | Repeat | Loop => {
+            open.push((keyword, line, None));
+            true
+        }
+        Else => match open.last_mut() {
+            Some((If, _, otherwise @ None)) => {
+                *otherwise = Some(line);
+                true
+            }
+            _ => false,
+        },
+        EndIf | EndWhile | EndFor | Until | EndLoop => {
+            let opener = match keyword {
+                EndIf => If,
+                EndWhile => While,
+                EndFor => For,
+                Until => Repeat,
+                _ => Loop,
+            };
+            match open.pop() {
+                Some((found, start, otherwise)) if found == opener => {
+                    if opener == If {
+                        flow.partners.insert(
+                            start,
+                            Partner::If {
+                                otherwise,
+                                end: line,
+                            },
+                        );
+                        if let Some(otherwise) = otherwise {
+                            flow.partners.insert(otherwise, Partner::Else { end: line });
+                        }
+                    } else {
+                        flow.partners.insert(start, Partner::Opens { end: line });
+                        flow.partners.insert(line, Partner::Closes { start });
+                    }
+                    true
+                }
+                _ => false,
+            }
+        }
+        Case => true,
+    }
+}
