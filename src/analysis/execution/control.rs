@@ -146,6 +146,7 @@ impl<'a, 's> Interpreter<'a, 's> {
                                 *span,
                                 "this control structure does not nest soundly (see S190): from here on the program is read in program order".to_string(),
                             );
+                            control.level_mut().pc = pc + 1;
                             return Next::LoseTrack;
                         }
                     }
@@ -181,6 +182,7 @@ impl<'a, 's> Interpreter<'a, 's> {
                                 *span,
                                 "the target of this jump is not known statically: from here on the program is read in program order".to_string(),
                             );
+                            control.level_mut().pc = pc + 1;
                             return Next::LoseTrack;
                         }
                     };

@@ -12,7 +12,7 @@ use crate::analysis::library::ProgramLibrary;
 use crate::analysis::ProgramKind;
 use crate::config::MachineConfig;
 use crate::diagnostics::{Code, Diagnostic, LineDiagnostic, Span};
-use crate::syntax::ast::{AddressKind, Block, Modifier, Statement};
+use crate::syntax::ast::{AddressKind, Block, Modifier, NamedAddress, Statement};
 use crate::syntax::LineParser;
 use std::collections::{HashMap, HashSet};
 use std::sync::Arc;
@@ -28,9 +28,12 @@ const ASSUMED_GROUPS: [(u8, &str); 6] = [
     (29, "diameter"),
 ];
 
-/// The groups whose assumed value changes how an axis value reads: plane, units, distance,
-/// diameter programming.
-const POSITION_GROUPS: u64 = 1 << 6 | 1 << 13 | 1 << 14 | 1 << 29;
+/// The groups whose assumed value changes how every axis value reads: units and distance.
+const POSITION_GROUPS: u64 = 1 << 13 | 1 << 14;
+/// Diameter programming changes how transverse axes read.
+const DIAMETER_GROUP: u64 = 1 << 29;
+/// The plane changes how polar values (AP, RP) read.
+const PLANE_GROUP: u64 = 1 << 6;
 
 /// Where a way goes after a block.
 pub(super) enum Next {
@@ -377,7 +380,15 @@ impl<'a, 's> Interpreter<'a, 's> {
                 }
             }
         }
-        let depends = control.assumed_groups & POSITION_GROUPS != 0;
+        let polar = statements.iter().any(|statement| {
+            matches!(statement, Statement::Address(word) if matches!(
+                word.kind,
+                AddressKind::Named(NamedAddress::PolarAngle | NamedAddress::PolarRadius)
+            ))
+        });
+        let depends = control.assumed_groups & POSITION_GROUPS != 0
+            || (polar && control.assumed_groups & PLANE_GROUP != 0);
+        let diameter = control.assumed_groups & DIAMETER_GROUP != 0;
         let written = engine.written_axes();
         let incremental_mode = engine.state.is_incremental();
         let mut incremental_axes = 0u64;
@@ -405,7 +416,8 @@ impl<'a, 's> Interpreter<'a, 's> {
             }
             let bit = 1u64 << index;
             let keeps = control.assumed_axes & bit != 0 && incremental_axes & bit != 0;
-            if depends || keeps {
+            let transverse = self.config.axes[index].kind == crate::config::AxisKind::Transverse;
+            if depends || keeps || (diameter && transverse) {
                 control.assumed_axes |= bit;
             } else {
                 control.assumed_axes &= !bit;
@@ -465,7 +477,9 @@ impl<'a, 's> Interpreter<'a, 's> {
             engine.forget_after_unknown_call();
         }
         let unit = Arc::clone(&self.units[0]);
-        let start = control.levels[0].pc + usize::from(control.levels.len() == 1);
+        // The main level's counter is the next line to run: the line it was at has run (or, when the
+        // budget ran out, has not started yet).
+        let start = control.levels[0].pc;
         let mut block = std::mem::take(&mut self.block);
         let stack: Arc<[crate::analysis::execution::CallSite]> = Arc::from(Vec::new());
         for pc in start..unit.line_count() {
