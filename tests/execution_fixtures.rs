@@ -323,9 +323,15 @@ fn compare_pass(at: &str, expected: &PassExpectation, executed: &ExecutedMove) -
         ));
     }
     if let Some(assumed) = &expected.assumed {
-        let actual: Vec<String> = executed.assumed.iter().map(|name| name.to_string()).collect();
+        let actual: Vec<String> = executed
+            .assumed
+            .iter()
+            .map(|name| name.to_string())
+            .collect();
         if &actual != assumed {
-            failures.push(format!("{at}: expected assumed {assumed:?}, got {actual:?}"));
+            failures.push(format!(
+                "{at}: expected assumed {assumed:?}, got {actual:?}"
+            ));
         }
     }
     failures

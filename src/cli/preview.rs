@@ -151,6 +151,26 @@ pub(crate) fn write_preview_json(
     })
 }
 
+/// Like [`write_preview_json`] for executed moves, with what was assumed about the entry state.
+pub(crate) fn write_executed_preview_json(
+    out: &mut dyn Write,
+    file: &str,
+    metric: bool,
+    assumed: &[(&'static str, String)],
+    moves: &[&ExecutedMove],
+    diagnostics: &[LineDiagnostic],
+    columns: &mut dyn FnMut(usize, Span) -> (usize, usize),
+) -> io::Result<()> {
+    preview_json::write_header_with(out, file, metric, assumed)?;
+    for (index, movement) in moves.iter().enumerate() {
+        preview_json::write_executed_move(out, movement, index == 0)?;
+    }
+    let columns = std::cell::RefCell::new(columns);
+    preview_json::write_footer(out, diagnostics, &|item| {
+        (columns.borrow_mut())(item.line, item.diagnostic.span)
+    })
+}
+
 /// The 1-based character columns of a span in one line of text.
 pub(crate) fn line_columns(line: &str, span: Span) -> (usize, usize) {
     ProgramLines::new(line).columns(0, span)

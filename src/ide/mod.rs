@@ -21,6 +21,7 @@ pub mod completion;
 pub mod cross_file_diagnostics;
 pub mod cycles;
 pub mod documentation;
+pub mod execution;
 pub mod format;
 pub mod jumps;
 pub mod language_docs;

@@ -6,9 +6,12 @@
 //! The `text` lock is only held for short, non-blocking work (applying an edit, taking a snapshot).
 
 use crate::analysis::document::{DocumentAnalysis, LineSource};
+use crate::analysis::execution::ExecutionOptions;
+use crate::analysis::library::ProgramLibrary;
 use crate::analysis::ProgramKind;
 use crate::config::MachineConfig;
 use crate::diagnostics::LineDiagnostic;
+use crate::ide::execution::{execute_document, DocumentExecution};
 use crate::lsp::convert::{publish_diagnostics_frame, PositionEncoding};
 use crate::lsp::cross_file::{with_extra, ExtraDiagnostics};
 use crate::lsp::diagnostics_array::{Columns, DiagnosticsArray, JsonArray};
@@ -58,11 +61,33 @@ pub struct Analysed {
     pub version: i32,
     pub revision: u64,
     config: Arc<MachineConfig>,
+    /// The run of the document (`ide::execution`), made when a feature first asks for it and kept
+    /// for the revision it ran.
+    execution: Mutex<Option<(u64, Arc<DocumentExecution>)>>,
 }
 
 impl Analysed {
     pub fn lines(&self) -> RopeLines<'_> {
         RopeLines::new(&self.rope)
+    }
+
+    /// The run of this revision of the document, made now if no feature asked for it before.
+    pub fn execution(&self, library: &dyn ProgramLibrary) -> Arc<DocumentExecution> {
+        let mut cached = lock(&self.execution);
+        if let Some((revision, execution)) = cached.as_ref() {
+            if *revision == self.revision {
+                return Arc::clone(execution);
+            }
+        }
+        let execution = Arc::new(execute_document(
+            &self.lines(),
+            &self.config,
+            self.analysis.kind(),
+            library,
+            &ExecutionOptions::default(),
+        ));
+        *cached = Some((self.revision, Arc::clone(&execution)));
+        execution
     }
 }
 
@@ -367,6 +392,7 @@ impl OpenDocument {
                         version,
                         revision,
                         config,
+                        execution: Mutex::new(None),
                     });
                     return slot;
                 }

@@ -2,10 +2,13 @@
 //! (its current text) or for a file on disk, optionally for some of its lines only.
 
 use crate::analysis::document::{DocumentAnalysis, LineSource, TextLines};
+use crate::analysis::execution::ExecutionOptions;
+use crate::analysis::library::NoLibrary;
 use crate::analysis::ProgramKind;
-use crate::cli::preview::{line_columns, write_preview_json};
+use crate::cli::preview::{line_columns, write_executed_preview_json, write_preview_json};
 use crate::cli::source_file::read_source_file;
 use crate::config::MachineConfig;
+use crate::ide::execution::{execute_document, DocumentExecution};
 use crate::lsp::documents::Analysed;
 use serde_json::Value;
 use std::path::Path;
@@ -31,24 +34,45 @@ impl LineSelection {
 
 fn preview(
     analysis: &DocumentAnalysis,
+    execution: &DocumentExecution,
     source: &dyn LineSource,
     label: &str,
     lines: LineSelection,
 ) -> Result<Value, String> {
     let range = lines.range(source.line_count());
-    let moves = analysis.moves(source, range.clone());
     let diagnostics = analysis.diagnostics();
     let first = diagnostics.partition_point(|item| item.line < range.start);
     let last = diagnostics.partition_point(|item| item.line < range.end);
+    let mut diagnostics = diagnostics[first..last.max(first)].to_vec();
+    diagnostics.extend(
+        execution
+            .findings()
+            .iter()
+            .filter(|item| range.contains(&item.line))
+            .cloned(),
+    );
+    diagnostics.sort_by_key(|item| (item.line, item.diagnostic.span.start()));
     let mut json = Vec::new();
-    write_preview_json(
-        &mut json,
-        label,
-        analysis.config().metric,
-        &moves,
-        &diagnostics[first..last.max(first)],
-        &mut |line_idx, span| line_columns(&source.line(line_idx), span),
-    )
+    let mut columns = |line_idx: usize, span| line_columns(&source.line(line_idx), span);
+    match execution.moves_in(range.clone()) {
+        Some(moves) => write_executed_preview_json(
+            &mut json,
+            label,
+            analysis.config().metric,
+            execution.assumed(),
+            &moves,
+            &diagnostics,
+            &mut columns,
+        ),
+        None => write_preview_json(
+            &mut json,
+            label,
+            analysis.config().metric,
+            &analysis.moves(source, range.clone()),
+            &diagnostics,
+            &mut columns,
+        ),
+    }
     .map_err(|error| format!("cannot write the preview: {error}"))?;
     serde_json::from_slice(&json).map_err(|error| format!("cannot read the preview back: {error}"))
 }
@@ -59,7 +83,14 @@ pub fn preview_open(
     label: &str,
     lines: LineSelection,
 ) -> Result<Value, String> {
-    preview(&analysed.analysis, &analysed.lines(), label, lines)
+    let execution = analysed.execution(&NoLibrary);
+    preview(
+        &analysed.analysis,
+        &execution,
+        &analysed.lines(),
+        label,
+        lines,
+    )
 }
 
 /// The preview of a file on disk, read as `check` reads it (UTF-8, else Windows-1252).
@@ -72,6 +103,13 @@ pub fn preview_file(
 ) -> Result<Value, String> {
     let source = read_source_file(path).map_err(|error| format!("{}: {error}", path.display()))?;
     let text_lines = TextLines::new(&source.text);
-    let analysis = DocumentAnalysis::new(&text_lines, config, kind);
-    preview(&analysis, &text_lines, label, lines)
+    let analysis = DocumentAnalysis::new(&text_lines, Arc::clone(&config), kind);
+    let execution = execute_document(
+        &text_lines,
+        &config,
+        kind,
+        &NoLibrary,
+        &ExecutionOptions::default(),
+    );
+    preview(&analysis, &execution, &text_lines, label, lines)
 }

@@ -50,6 +50,17 @@ pub fn hover(
         )),
         None => gcode_of(word).map(|code| (gcode_hover(code, &report), Some(word.span.clone()))),
     });
+    // The run of the program adds what program order cannot show: passes, calls, assumptions. A
+    // program that runs in order (the large CAM programs) is not run for a hover.
+    let needs_run = report.before.flow_uncertain
+        || report.after.flow_uncertain
+        || analysed.analysis.kind() == crate::analysis::ProgramKind::Subprogram;
+    let run_summary = needs_run
+        .then(|| {
+            let execution = analysed.execution(&crate::analysis::library::NoLibrary);
+            crate::ide::execution::execution_summary(&execution, line_idx)
+        })
+        .flatten();
     let (markdown, span) = match special {
         Some(found) => found,
         None => match documentation(&line, line_idx, offset) {
@@ -64,6 +75,10 @@ pub fn hover(
             ),
             None => (block_hover(&report, config), None),
         },
+    };
+    let markdown = match run_summary {
+        Some(summary) => format!("{summary}\n\n---\n\n{markdown}"),
+        None => markdown,
     };
     Some(Hover {
         contents: HoverContents::Markup(MarkupContent {

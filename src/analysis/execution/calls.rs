@@ -183,6 +183,7 @@ impl<'a, 's> Interpreter<'a, 's> {
             retest_for: None,
             modal_call: None,
             jump_passes: Vec::new(),
+            label_marks: Vec::new(),
             stack: Arc::from(stack),
         });
         Next::Moved

@@ -79,13 +79,13 @@ impl<'a, 's> Interpreter<'a, 's> {
                         }
                         (StructureKeyword::EndIf, _) => return Next::Line(pc + 1),
                         (StructureKeyword::While, Some(Partner::Opens { end })) => {
-                            enter_loop(control, pc, end, pc);
+                            enter_loop(control, pc, end, pc, self.next_fork);
                             let decision = self.decide(engine, block, line, *condition);
                             return self.loop_test(control, engine, pc, end, decision, *span);
                         }
                         (StructureKeyword::For, Some(Partner::Opens { end })) => {
                             if !retest {
-                                enter_loop(control, pc, end, pc);
+                                enter_loop(control, pc, end, pc, self.next_fork);
                             }
                             let decision =
                                 self.for_test(engine, block, line, statements, *condition, retest);
@@ -95,7 +95,7 @@ impl<'a, 's> Interpreter<'a, 's> {
                             StructureKeyword::Repeat | StructureKeyword::Loop,
                             Some(Partner::Opens { end }),
                         ) => {
-                            enter_loop(control, pc, end, pc + 1);
+                            enter_loop(control, pc, end, pc + 1, self.next_fork);
                             return Next::Line(pc + 1);
                         }
                         (
@@ -442,7 +442,7 @@ impl<'a, 's> Interpreter<'a, 's> {
 }
 
 /// Enters the loop `head..=end` unless the way is in it already (a WHILE tests again at its head).
-fn enter_loop(control: &mut Control, head: usize, end: usize, back_to: usize) {
+fn enter_loop(control: &mut Control, head: usize, end: usize, back_to: usize, fork_mark: u32) {
     let level = control.level_mut();
     if level.loops.last().is_some_and(|frame| frame.head == head) {
         return;
@@ -452,6 +452,7 @@ fn enter_loop(control: &mut Control, head: usize, end: usize, back_to: usize) {
         end,
         back_to,
         passes: 1,
+        fork_mark,
     });
 }
 

@@ -35,6 +35,13 @@ const DIAMETER_GROUP: u64 = 1 << 29;
 /// The plane changes how polar values (AP, RP) read.
 const PLANE_GROUP: u64 = 1 << 6;
 
+/// Undecided conditions in one run after which the rest is read in program order: a program whose
+/// every way depends on data the analysis does not have is not worth following further.
+const MAX_DECISIONS: u32 = 20_000;
+
+/// The undecided conditions a way remembers (it is conditional as long as it remembers one).
+const MAX_FORKS: usize = 64;
+
 /// Where a way goes after a block.
 pub(super) enum Next {
     /// The next line of the same level (a transfer within the level is made by the statement).
@@ -71,7 +78,7 @@ pub struct Interpreter<'a, 's> {
     executed: u64,
     /// The ways that wait, in no particular order.
     pending: Vec<Way>,
-    next_fork: u32,
+    pub(super) next_fork: u32,
     assumed: Vec<(&'static str, String)>,
     /// States seen at the heads of long concrete loops, to find loops whose state never changes.
     pub(super) loop_heads: HashMap<(usize, usize, usize), EngineSnapshot>,
@@ -196,6 +203,18 @@ impl<'a, 's> Interpreter<'a, 's> {
                 );
                 return WayEnd::LostTrack;
             }
+            if self.next_fork >= MAX_DECISIONS {
+                let line = self.outer_line(control);
+                self.report_at(
+                    line,
+                    Code::FlowNotFollowed,
+                    Span::default(),
+                    format!(
+                        "{MAX_DECISIONS} conditions that the program does not determine were met: from here on the program is read in program order and its values are uncertain"
+                    ),
+                );
+                return WayEnd::LostTrack;
+            }
             match self.step(control, engine) {
                 Next::Line(line) => control.level_mut().pc = line,
                 Next::Moved => {}
@@ -241,6 +260,12 @@ impl<'a, 's> Interpreter<'a, 's> {
         let decision = self.next_fork;
         self.next_fork += 1;
         let mut other = control.clone();
+        // A way that depends on many decisions is conditional already: the list keeps the newest,
+        // which the loops' pass marks compare with.
+        if control.forks.len() >= MAX_FORKS {
+            control.forks.remove(0);
+            other.forks.remove(0);
+        }
         other.forks.push((decision, false));
         control.forks.push((decision, true));
         other.level_mut().pc = line;
@@ -295,6 +320,14 @@ impl<'a, 's> Interpreter<'a, 's> {
         self.executed += 1;
         self.passes[unit_index][pc] += 1;
         let line = unit.line(pc);
+        if block.label.is_some() {
+            let mark = self.next_fork;
+            let marks = &mut control.level_mut().label_marks;
+            match marks.iter_mut().find(|(labelled, _)| *labelled == pc) {
+                Some((_, value)) => *value = mark,
+                None => marks.push((pc, mark)),
+            }
+        }
         let retest = control.level().retest_for == Some(pc);
         let next = if retest {
             control.level_mut().retest_for = None;

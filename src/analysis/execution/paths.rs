@@ -21,6 +21,9 @@ pub struct LoopFrame {
     pub back_to: usize,
     /// Passes started so far.
     pub passes: u32,
+    /// The number of the first undecided condition met in the current pass: a way that still
+    /// depends on one of them at the next pass has a number of passes that is not known.
+    pub fork_mark: u32,
 }
 
 /// What a `SAVE` subprogram restores on its return (reference §8.3).
@@ -60,6 +63,9 @@ pub struct Activation {
     pub modal_call: Option<ModalCall>,
     /// Backward jumps taken to each target line (for the pass limit of loops made of jumps).
     pub jump_passes: Vec<(usize, u32)>,
+    /// Per labelled line, the number of the next undecided condition when the way last ran it: the
+    /// start of a pass of a loop made of a backward jump to that label.
+    pub label_marks: Vec<(usize, u32)>,
     /// The calls that led here, outermost first (shared by every move of the level).
     pub stack: Arc<[CallSite]>,
 }
@@ -74,6 +80,7 @@ impl Activation {
             retest_for: None,
             modal_call: None,
             jump_passes: Vec::new(),
+            label_marks: Vec::new(),
             stack: Arc::from(Vec::new()),
         }
     }
@@ -173,6 +180,11 @@ impl Control {
                     && mine.loops == theirs.loops
                     && mine.retest_for == theirs.retest_for
                     && mine.modal_call == theirs.modal_call
+                    && mine
+                        .loops
+                        .iter()
+                        .map(|frame| frame.passes)
+                        .eq(theirs.loops.iter().map(|frame| frame.passes))
                     && mine.call.as_ref().map(|call| call.repetitions_left)
                         == theirs.call.as_ref().map(|call| call.repetitions_left)
             })

@@ -1,0 +1,300 @@
+//! The execution of an open document, for the features that show what the control does: the
+//! toolpath of a program with loops, jumps or calls, the passes of a block in its hover, the first
+//! pass and the count in an inlay hint. A program that runs in program order (no flow, a main
+//! program) needs none of this: its moves are those of the document's analysis.
+
+use crate::analysis::document::LineSource;
+use crate::analysis::execution::{entry_assumptions, ExecutionOptions};
+use crate::analysis::execution::{execute, program::ProgramUnit, ExecutedMove, Execution};
+use crate::analysis::library::ProgramLibrary;
+use crate::analysis::ProgramKind;
+use crate::config::MachineConfig;
+use std::ops::Range;
+use std::sync::Arc;
+
+/// What running a document gave: its moves in execution order, or that it runs in program order.
+#[derive(Debug, Clone, PartialEq)]
+pub enum DocumentExecution {
+    /// A main program without labels, jumps, structures or calls: every block runs once, in program
+    /// order, from the reset state; the document's analysis has its moves.
+    InOrder,
+    /// The moves of the run, with the run's findings and assumptions.
+    Executed {
+        execution: Execution,
+        moves: Vec<ExecutedMove>,
+        assumed: Vec<(&'static str, String)>,
+        /// Per line of the document, the indexes of its moves in `moves` (a call line: the moves the
+        /// call causes), in execution order.
+        by_line: Vec<Range<u32>>,
+        /// `moves` sorted by their outer line: the index into `moves` of each, in order.
+        order: Vec<u32>,
+    },
+}
+
+/// Runs the document held by `source`.
+pub fn execute_document(
+    source: &dyn LineSource,
+    config: &MachineConfig,
+    kind: ProgramKind,
+    library: &dyn ProgramLibrary,
+    options: &ExecutionOptions,
+) -> DocumentExecution {
+    let mut text = String::new();
+    source.for_each_line(0, &mut |_, line| {
+        text.push_str(line);
+        text.push('\n');
+        true
+    });
+    let text: Arc<str> = Arc::from(text);
+    let subprogram = kind == ProgramKind::Subprogram || crate::analysis::has_proc_header(&text);
+    if !subprogram {
+        let unit = ProgramUnit::new(String::new(), None, Arc::clone(&text), config);
+        if !unit.flow.has_flow {
+            return DocumentExecution::InOrder;
+        }
+    }
+    let mut moves = Vec::new();
+    let execution = execute(&text, config, kind, library, options, &mut |movement| {
+        moves.push(movement)
+    });
+    let assumed = entry_assumptions(&text, config, kind, options);
+    let mut order: Vec<u32> = (0..moves.len() as u32).collect();
+    order.sort_by_key(|&index| moves[index as usize].outer_line());
+    let line_count = source.line_count();
+    let mut by_line = vec![0..0; line_count];
+    let mut start = 0;
+    while start < order.len() {
+        let line = moves[order[start] as usize].outer_line();
+        let mut end = start;
+        while end < order.len() && moves[order[end] as usize].outer_line() == line {
+            end += 1;
+        }
+        if let Some(slot) = by_line.get_mut(line) {
+            *slot = start as u32..end as u32;
+        }
+        start = end;
+    }
+    DocumentExecution::Executed {
+        execution,
+        moves,
+        assumed,
+        by_line,
+        order,
+    }
+}
+
+impl DocumentExecution {
+    /// The moves whose outer line is in `lines`, in execution order; `None` when the document runs
+    /// in program order.
+    pub fn moves_in(&self, lines: Range<usize>) -> Option<Vec<&ExecutedMove>> {
+        let DocumentExecution::Executed { moves, order, .. } = self else {
+            return None;
+        };
+        let first =
+            order.partition_point(|&index| moves[index as usize].outer_line() < lines.start);
+        let last = order.partition_point(|&index| moves[index as usize].outer_line() < lines.end);
+        let mut indexes: Vec<u32> = order[first..last.max(first)].to_vec();
+        indexes.sort_unstable();
+        Some(
+            indexes
+                .iter()
+                .map(|&index| &moves[index as usize])
+                .collect(),
+        )
+    }
+
+    /// The moves line `line` of the document causes (its own, or those of the program it calls), in
+    /// execution order.
+    pub fn moves_of_line(&self, line: usize) -> Vec<&ExecutedMove> {
+        match self {
+            DocumentExecution::InOrder => Vec::new(),
+            DocumentExecution::Executed {
+                moves,
+                by_line,
+                order,
+                ..
+            } => {
+                let Some(range) = by_line.get(line) else {
+                    return Vec::new();
+                };
+                let mut indexes: Vec<u32> =
+                    order[range.start as usize..range.end as usize].to_vec();
+                indexes.sort_unstable();
+                indexes
+                    .iter()
+                    .map(|&index| &moves[index as usize])
+                    .collect()
+            }
+        }
+    }
+
+    /// How often line `line` ran (1 for every line of a document that runs in program order).
+    pub fn passes_of_line(&self, line: usize) -> u32 {
+        match self {
+            DocumentExecution::InOrder => 1,
+            DocumentExecution::Executed { execution, .. } => execution.passes_of_line(line),
+        }
+    }
+
+    /// The findings of the run, at lines of the document.
+    pub fn findings(&self) -> &[crate::diagnostics::LineDiagnostic] {
+        match self {
+            DocumentExecution::InOrder => &[],
+            DocumentExecution::Executed { execution, .. } => &execution.findings,
+        }
+    }
+
+    /// What was assumed about the entry state.
+    pub fn assumed(&self) -> &[(&'static str, String)] {
+        match self {
+            DocumentExecution::InOrder => &[],
+            DocumentExecution::Executed { assumed, .. } => assumed,
+        }
+    }
+}
+
+/// Values as the hover writes them: at most four decimals, no trailing zeros.
+fn short(value: f64) -> String {
+    let text = format!("{value:.4}");
+    let text = text.trim_end_matches('0').trim_end_matches('.');
+    if text == "-0" {
+        "0".to_string()
+    } else {
+        text.to_string()
+    }
+}
+
+fn end_text(executed: &ExecutedMove) -> String {
+    let movement = &executed.movement;
+    let mut parts: Vec<String> = movement
+        .end
+        .iter()
+        .map(|(name, value)| format!("{name}{}", short(*value)))
+        .collect();
+    parts.extend(movement.uncertain.iter().map(|name| format!("{name}?")));
+    parts.join(" ")
+}
+
+/// What the run says about line `line`, as Markdown for a hover: how often it runs and where each
+/// pass ends, what a call on it runs and where the call ends, what is assumed. `None` for a document
+/// that runs in program order.
+pub fn execution_summary(execution: &DocumentExecution, line: usize) -> Option<String> {
+    let DocumentExecution::Executed { assumed, .. } = execution else {
+        return None;
+    };
+    let mut text = String::new();
+    let passes = execution.passes_of_line(line);
+    let moves = execution.moves_of_line(line);
+    let own: Vec<&&ExecutedMove> = moves
+        .iter()
+        .filter(|executed| executed.stack.is_empty())
+        .collect();
+    if passes == 0 {
+        text.push_str("**Not run**: no way the control takes through the program reaches this block (or it lies past an endless loop).");
+    } else if passes > 1 {
+        text.push_str(&format!("**Runs {passes} times.**"));
+        for (index, executed) in own.iter().take(5).enumerate() {
+            text.push_str(&format!("\n- pass {}: {}", index + 1, end_text(executed)));
+        }
+        if own.len() > 5 {
+            text.push_str(&format!("\n- … {} more", own.len() - 5));
+        }
+    }
+    let called: Vec<&&ExecutedMove> = moves
+        .iter()
+        .filter(|executed| !executed.stack.is_empty())
+        .collect();
+    if let Some(last) = called.last() {
+        let file = last.path.as_deref().unwrap_or("this program");
+        if !text.is_empty() {
+            text.push_str("\n\n");
+        }
+        text.push_str(&format!(
+            "**Calls** `{file}`: {} moves; the last ends at {}.",
+            called.len(),
+            end_text(last)
+        ));
+    }
+    if own
+        .iter()
+        .chain(called.iter())
+        .any(|executed| executed.conditional)
+    {
+        if !text.is_empty() {
+            text.push_str("\n\n");
+        }
+        text.push_str("Some of these moves lie on a way whose condition the program does not decide (main-run values, machine data).");
+    }
+    if !assumed.is_empty() {
+        let axes: Vec<&str> = own
+            .iter()
+            .flat_map(|executed| executed.assumed.iter().map(|name| name.as_ref()))
+            .collect();
+        if !axes.is_empty() {
+            let state: Vec<&str> = assumed.iter().map(|(_, value)| value.as_str()).collect();
+            if !text.is_empty() {
+                text.push_str("\n\n");
+            }
+            let mut axes = axes;
+            axes.sort_unstable();
+            axes.dedup();
+            text.push_str(&format!(
+                "**Assumed**: {} rest on the entry state {} (the reset state: this subprogram is analysed on its own, and the state at its calls is not known here).",
+                axes.join(" "),
+                state.join(" ")
+            ));
+        }
+    }
+    (!text.is_empty()).then_some(text)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::analysis::document::TextLines;
+    use crate::analysis::library::NoLibrary;
+
+    fn run(text: &str, kind: ProgramKind) -> DocumentExecution {
+        execute_document(
+            &TextLines::new(text),
+            &MachineConfig::mill(),
+            kind,
+            &NoLibrary,
+            &ExecutionOptions::default(),
+        )
+    }
+
+    #[test]
+    fn a_program_in_order_is_not_run_again() {
+        let execution = run("G90 G0 X1\nX2\nM30\n", ProgramKind::Main);
+        assert_eq!(execution, DocumentExecution::InOrder);
+        assert_eq!(execution.passes_of_line(1), 1);
+    }
+
+    #[test]
+    fn moves_are_found_by_line_and_range() {
+        let text = "G90 G0 X0\nFOR R1=1 TO 3\nG0 X=R1\nENDFOR\nY5\nM30\n";
+        let execution = run(text, ProgramKind::Main);
+        let of_loop: Vec<f64> = execution
+            .moves_of_line(2)
+            .iter()
+            .map(|executed| executed.movement.end[0].1)
+            .collect();
+        assert_eq!(of_loop, vec![1.0, 2.0, 3.0]);
+        assert_eq!(execution.passes_of_line(2), 3);
+        let range = execution.moves_in(2..5).expect("executed");
+        assert_eq!(range.len(), 4);
+        assert_eq!(range[3].movement.line, 4);
+        let summary = execution_summary(&execution, 2).expect("a summary");
+        assert!(summary.contains("Runs 3 times"), "{summary}");
+        assert!(summary.contains("pass 2: X2"), "{summary}");
+    }
+
+    #[test]
+    fn a_subprogram_says_what_it_assumes() {
+        let execution = run("G0 X10\nM17\n", ProgramKind::Subprogram);
+        let summary = execution_summary(&execution, 0).expect("a summary");
+        assert!(summary.contains("**Assumed**: X"), "{summary}");
+        assert!(summary.contains("G71"), "{summary}");
+    }
+}

@@ -1,0 +1,212 @@
+//! How well the interpreter resolves the real programs of `../shared/corpus/real`: the share of moves
+//! that have a value for every axis their block writes (in `end`, or in `mcs` for a block in machine
+//! coordinates), and the share with an empty `uncertain` list. The called programs are the other
+//! program files of the same folder. `cargo test --release --test corpus_execution -- --nocapture`
+//! prints the figures and the files with the most unresolved moves.
+//!
+//! When the corpus is not there, the test prints `corpus not found at ...; skipping` and passes.
+
+use sinumerik_lsp::analysis::axis_lookup::AxisLookup;
+use sinumerik_lsp::analysis::execution::{execute_collecting, ExecutedMove, ExecutionOptions};
+use sinumerik_lsp::analysis::library::MemoryLibrary;
+use sinumerik_lsp::analysis::ProgramKind;
+use sinumerik_lsp::cli::source_file::read_source_file;
+use sinumerik_lsp::config::MachineConfig;
+use sinumerik_lsp::syntax::ast::{AddressKind, Statement};
+use sinumerik_lsp::syntax::gcodes::GCode;
+use sinumerik_lsp::syntax::lines::line_ranges;
+use sinumerik_lsp::syntax::{parse_line, SyntaxContext};
+use std::collections::HashMap;
+use std::path::{Path, PathBuf};
+
+/// The shares this build must reach at least (the goal is 95 % and 60 %).
+const MIN_RESOLVED_SHARE: f64 = 0.95;
+const MIN_CERTAIN_SHARE: f64 = 0.60;
+
+fn corpus_dir() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/corpus/real")
+}
+
+/// `*` in a pattern of the known-invalid list matches any run of characters.
+fn glob_matches(pattern: &str, text: &str) -> bool {
+    match pattern.split_once('*') {
+        None => pattern == text,
+        Some((head, tail)) => {
+            text.starts_with(head)
+                && text.len() >= head.len() + tail.len()
+                && (0..=text.len() - head.len()).any(|skip| {
+                    text.get(head.len() + skip..)
+                        .is_some_and(|rest| glob_matches(tail, rest))
+                })
+        }
+    }
+}
+
+fn known_invalid() -> Vec<String> {
+    let list = std::fs::read_to_string(
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/corpus_known_invalid.txt"),
+    )
+    .expect("the known-invalid list is readable");
+    list.lines()
+        .filter(|line| !line.trim().is_empty() && !line.starts_with('#'))
+        .filter_map(|line| {
+            line.split_once('\t')
+                .map(|(path, _)| path.trim().to_string())
+        })
+        .collect()
+}
+
+fn program_files(dir: &Path, out: &mut Vec<PathBuf>) {
+    let mut entries: Vec<PathBuf> = std::fs::read_dir(dir)
+        .expect("readable corpus folder")
+        .map(|entry| entry.expect("readable entry").path())
+        .collect();
+    entries.sort();
+    for path in entries {
+        if path.is_dir() {
+            program_files(&path, out);
+        } else if path.extension().is_some_and(|extension| {
+            extension.eq_ignore_ascii_case("mpf") || extension.eq_ignore_ascii_case("spf")
+        }) {
+            out.push(path);
+        }
+    }
+}
+
+/// The program files of a folder as a library, by file name.
+fn folder_library(dir: &Path, texts: &mut HashMap<PathBuf, String>) -> MemoryLibrary {
+    let mut library = MemoryLibrary::default();
+    let Ok(entries) = std::fs::read_dir(dir) else {
+        return library;
+    };
+    for entry in entries.flatten() {
+        let path = entry.path();
+        let is_program = path.extension().is_some_and(|extension| {
+            extension.eq_ignore_ascii_case("spf") || extension.eq_ignore_ascii_case("mpf")
+        });
+        if !is_program {
+            continue;
+        }
+        let Ok(source) = read_source_file(&path) else {
+            continue;
+        };
+        let stem = path.file_stem().unwrap().to_string_lossy().to_string();
+        library.insert(&stem, &path.display().to_string(), &source.text);
+        texts.insert(path, source.text);
+    }
+    library
+}
+
+/// Whether the move has a value for every axis its block writes.
+fn resolved(
+    executed: &ExecutedMove,
+    line: &str,
+    context: &SyntaxContext,
+    config: &MachineConfig,
+    lookup: &AxisLookup,
+) -> bool {
+    let (block, _) = parse_line(line, context);
+    let statements = block.interpreted_statements();
+    let machine_coordinates = statements.iter().any(|statement| {
+        matches!(statement, Statement::GCode { code, .. } if code.group() == 9 && !matches!(code, GCode::WorkOffset(_)))
+    });
+    statements.iter().all(|statement| {
+        let Statement::Address(word) = statement else {
+            return true;
+        };
+        if word.kind != AddressKind::Axis {
+            return true;
+        }
+        let Some(index) = lookup.index(config, line, word) else {
+            return true;
+        };
+        let name = config.axes[index].name.as_str();
+        let known_in = |values: &[(std::sync::Arc<str>, f64)]| {
+            values.iter().any(|(axis, _)| axis.as_ref() == name)
+        };
+        known_in(&executed.movement.end)
+            || (machine_coordinates && executed.movement.machine.as_deref().is_some_and(known_in))
+    })
+}
+
+#[test]
+fn corpus_moves_are_resolved() {
+    let dir = corpus_dir();
+    if !dir.is_dir() {
+        println!("corpus not found at {}; skipping", dir.display());
+        return;
+    }
+    let invalid = known_invalid();
+    let mut files = Vec::new();
+    program_files(&dir, &mut files);
+    let config = MachineConfig::mill();
+    let context = SyntaxContext::new(&config);
+    let lookup = AxisLookup::new(&config);
+    let options = ExecutionOptions::default();
+    let (mut moves, mut resolved_moves, mut certain_moves) = (0usize, 0usize, 0usize);
+    let mut per_file = Vec::new();
+    for path in files {
+        let relative = path
+            .strip_prefix(&dir)
+            .unwrap()
+            .to_string_lossy()
+            .replace('\\', "/");
+        if invalid
+            .iter()
+            .any(|pattern| glob_matches(pattern, &relative))
+        {
+            continue;
+        }
+        let source = read_source_file(&path).expect("readable corpus file");
+        let mut texts = HashMap::new();
+        let library = folder_library(path.parent().unwrap(), &mut texts);
+        let kind = ProgramKind::from_extension(path.extension().and_then(|e| e.to_str()));
+        let (_, executed) = execute_collecting(&source.text, &config, kind, &library, &options);
+        let mut lines_of: HashMap<Option<String>, Vec<(usize, usize)>> = HashMap::new();
+        let (mut file_resolved, mut file_certain) = (0, 0);
+        for movement in &executed {
+            let key = movement.path.as_deref().map(str::to_string);
+            let text = match &key {
+                None => source.text.as_str(),
+                Some(path) => texts.get(Path::new(path)).map(String::as_str).unwrap_or(""),
+            };
+            let ranges = lines_of
+                .entry(key)
+                .or_insert_with(|| line_ranges(text).collect());
+            let line = ranges
+                .get(movement.movement.line)
+                .map_or("", |&(start, end)| &text[start..end]);
+            if resolved(movement, line, &context, &config, &lookup) {
+                file_resolved += 1;
+            }
+            if movement.movement.uncertain.is_empty() {
+                file_certain += 1;
+            }
+        }
+        moves += executed.len();
+        resolved_moves += file_resolved;
+        certain_moves += file_certain;
+        per_file.push((relative, executed.len(), file_resolved, file_certain));
+    }
+    let share = |count: usize| count as f64 / moves.max(1) as f64;
+    println!(
+        "{moves} executed moves: {:.1} % resolved for every axis their block writes, {:.1} % without uncertain axes",
+        100.0 * share(resolved_moves),
+        100.0 * share(certain_moves)
+    );
+    per_file.sort_by_key(|(_, total, resolved, _)| std::cmp::Reverse(total - resolved));
+    for (file, total, resolved, certain) in per_file.iter().take(15) {
+        println!("  {file}: {total} moves, {resolved} resolved, {certain} certain");
+    }
+    assert!(moves > 1000, "the corpus gave only {moves} moves");
+    assert!(
+        share(resolved_moves) >= MIN_RESOLVED_SHARE,
+        "only {:.1} % of the moves are resolved",
+        100.0 * share(resolved_moves)
+    );
+    assert!(
+        share(certain_moves) >= MIN_CERTAIN_SHARE,
+        "only {:.1} % of the moves are free of uncertain axes",
+        100.0 * share(certain_moves)
+    );
+}
