@@ -43,7 +43,7 @@ pub(crate) fn run_preview(
             .and_then(|extension| extension.to_str()),
     );
     let library = crate::analysis::library::NoLibrary;
-    let execution_options = crate::analysis::execution::ExecutionOptions::default();
+    let execution_options = config.execution.clone();
     let run = |visit: &mut dyn FnMut(ExecutedMove)| {
         run_program(
             &source.text,

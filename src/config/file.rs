@@ -193,6 +193,8 @@ struct RawConfig {
     check: RawCheck,
     #[serde(default)]
     offsets: BTreeMap<String, BTreeMap<String, f64>>,
+    #[serde(default)]
+    execution: super::execution::RawExecution,
 }
 
 /// The `[machine]` table. Numbers are read as `i64` and range-checked here, which gives a clearer
@@ -483,6 +485,10 @@ impl RawConfig {
             config.extensions = normalized;
         }
 
+        config.execution = self
+            .execution
+            .convert()
+            .map_err(|(name, message)| invalid(&[key("execution"), key(name)], message))?;
         Ok(config)
     }
 }

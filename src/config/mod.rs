@@ -1,6 +1,7 @@
 //! The machine configuration: what the control's machine data would tell about axes, units, reset state
 //! and tolerances. Plain data with defaults; reading `sinumerik.toml` lives in `file.rs`.
 
+pub mod execution;
 mod file;
 
 pub use file::{
@@ -98,6 +99,8 @@ pub struct MachineConfig {
     /// MD18600 `MM_FRAME_FINE_TRANS`: whether the programmable translation has a fine part, which
     /// ATRANS and G59 write while TRANS and G58 write the coarse part (reference §7.2).
     pub frame_fine_trans: bool,
+    /// How the interpreter runs programs (`[execution]`).
+    pub execution: execution::ExecutionOptions,
 }
 
 impl Default for MachineConfig {
@@ -131,6 +134,7 @@ impl MachineConfig {
             settable_offsets: BTreeMap::new(),
             frame_offset_incr_prog: true,
             frame_fine_trans: false,
+            execution: Default::default(),
         }
     }
 

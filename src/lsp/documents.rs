@@ -6,7 +6,6 @@
 //! The `text` lock is only held for short, non-blocking work (applying an edit, taking a snapshot).
 
 use crate::analysis::document::{DocumentAnalysis, LineSource};
-use crate::analysis::execution::ExecutionOptions;
 use crate::analysis::library::ProgramLibrary;
 use crate::analysis::ProgramKind;
 use crate::config::MachineConfig;
@@ -84,7 +83,7 @@ impl Analysed {
             &self.config,
             self.analysis.kind(),
             library,
-            &ExecutionOptions::default(),
+            &self.config.execution,
         ));
         *cached = Some((self.revision, Arc::clone(&execution)));
         execution

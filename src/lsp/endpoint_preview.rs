@@ -2,7 +2,6 @@
 //! (its current text) or for a file on disk, optionally for some of its lines only.
 
 use crate::analysis::document::{DocumentAnalysis, LineSource, TextLines};
-use crate::analysis::execution::ExecutionOptions;
 use crate::analysis::library::NoLibrary;
 use crate::analysis::ProgramKind;
 use crate::cli::preview::{line_columns, write_executed_preview_json, write_preview_json};
@@ -109,7 +108,7 @@ pub fn preview_file(
         &config,
         kind,
         &NoLibrary,
-        &ExecutionOptions::default(),
+        &config.execution,
     );
     preview(&analysis, &execution, &text_lines, label, lines)
 }

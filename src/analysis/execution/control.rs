@@ -359,27 +359,46 @@ impl<'a, 's> Interpreter<'a, 's> {
         {
             return self.widen(control, engine, position, target);
         }
+        let next_fork = self.next_fork;
         let level = control.level_mut();
-        let passes = match level.loops.last_mut() {
+        let (passes, mark) = match level.loops.last_mut() {
             Some(frame) if frame.back_to == target => {
                 frame.passes += 1;
-                frame.passes
+                (
+                    frame.passes,
+                    std::mem::replace(&mut frame.fork_mark, next_fork),
+                )
             }
-            _ => match level
-                .jump_passes
-                .iter_mut()
-                .find(|(line, _)| *line == target)
-            {
-                Some((_, passes)) => {
-                    *passes += 1;
-                    *passes
-                }
-                None => {
-                    level.jump_passes.push((target, 1));
-                    1
-                }
-            },
+            _ => {
+                let mark = level
+                    .label_marks
+                    .iter()
+                    .find(|(labelled, _)| *labelled == target)
+                    .map_or(0, |(_, mark)| *mark);
+                let passes = match level
+                    .jump_passes
+                    .iter_mut()
+                    .find(|(line, _)| *line == target)
+                {
+                    Some((_, passes)) => {
+                        *passes += 1;
+                        *passes
+                    }
+                    None => {
+                        level.jump_passes.push((target, 1));
+                        1
+                    }
+                };
+                (passes, mark)
+            }
         };
+        // A way that still depends on a condition met in this pass and decided neither way: whether
+        // and when the loop ends is not known.
+        if control.forks.iter().any(|(decision, _)| *decision >= mark) {
+            mark_unknown_loop(control, depth, target, pc);
+            let position = control.unknown_loops.len() - 1;
+            return self.widen(control, engine, position, target);
+        }
         if passes > self.options.max_loop_passes {
             self.report(
                 control,

@@ -23,46 +23,7 @@ use crate::diagnostics::LineDiagnostic;
 use crate::syntax::ast::{AddressKind, AddressWord, Block, ValueExpr};
 use std::sync::Arc;
 
-/// How a subprogram analysed on its own starts.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum EntryState {
-    /// The machine's reset state (MD20150), as an explicit assumption: every value that rests on it
-    /// says so.
-    Reset,
-    /// The caller's state, unknown: values that depend on it stay unknown.
-    Unknown,
-}
-
-/// The limits and choices of the interpreter; each comes from `sinumerik.toml` (`[execution]`).
-#[derive(Debug, Clone, PartialEq)]
-pub struct ExecutionOptions {
-    /// Executed blocks after which the rest is read in program order.
-    pub max_blocks: u64,
-    /// Passes of one loop after which what its body changes is unknown (reference §18.6).
-    pub max_loop_passes: u32,
-    /// Program levels, the main program included (reference §17.3: 16).
-    pub max_levels: usize,
-    pub entry: EntryState,
-    /// Whether M2/M30 in a subprogram end only that subprogram, like M17 (reference §17.4) or the
-    /// whole program.
-    pub m30_ends_subprogram: bool,
-    /// Whether the PLC requests the restart of `GOTOS` (reference §17.7): `Some(false)` (the
-    /// default) never, `Some(true)` always, `None` unknown (both ways are followed).
-    pub gotos_restarts: Option<bool>,
-}
-
-impl Default for ExecutionOptions {
-    fn default() -> ExecutionOptions {
-        ExecutionOptions {
-            max_blocks: 20_000_000,
-            max_loop_passes: 10_000,
-            max_levels: 16,
-            entry: EntryState::Reset,
-            m30_ends_subprogram: true,
-            gotos_restarts: Some(false),
-        }
-    }
-}
+pub use crate::config::execution::{EntryState, ExecutionOptions};
 
 /// Where a called program was called from.
 #[derive(Debug, Clone, PartialEq, Eq)]
