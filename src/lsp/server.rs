@@ -94,19 +94,13 @@ pub fn file_path(uri: &Uri) -> Option<PathBuf> {
     uri.to_file_path().map(|path| path.into_owned())
 }
 
+/// The kind of a document by its file name (`_N_PART1_MPF` and `PART1.MPF` are main programs), or by
+/// the last segment of its URI when it is not a file.
 fn program_kind(uri: &Uri, path: Option<&Path>) -> ProgramKind {
-    let extension = match path {
-        Some(path) => path
-            .extension()
-            .and_then(|extension| extension.to_str())
-            .map(str::to_string),
-        None => uri
-            .path()
-            .as_str()
-            .rsplit_once('.')
-            .map(|(_, extension)| extension.to_string()),
-    };
-    ProgramKind::from_extension(extension.as_deref())
+    match path {
+        Some(path) => ProgramKind::from_file_name(&path.to_string_lossy()),
+        None => ProgramKind::from_file_name(uri.path().as_str()),
+    }
 }
 
 /// The language server: a handle on the shared state.
@@ -984,5 +978,24 @@ impl LanguageServer for Backend {
         .await
         .map_err(|_| Error::internal_error())?;
         result.map(Some).map_err(Error::invalid_params)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::str::FromStr;
+
+    #[test]
+    fn a_document_s_kind_comes_from_its_file_name() {
+        let kind = |uri: &str| {
+            let uri = Uri::from_str(uri).unwrap();
+            program_kind(&uri, file_path(&uri).as_deref())
+        };
+        assert_eq!(kind("file:///nc/_N_MAIN_MPF"), ProgramKind::Main);
+        assert_eq!(kind("file:///nc/_N_MAIN_SPF"), ProgramKind::Subprogram);
+        assert_eq!(kind("file:///nc/main.mpf"), ProgramKind::Main);
+        assert_eq!(kind("untitled:_N_MAIN_MPF"), ProgramKind::Main);
+        assert_eq!(kind("untitled:Untitled-1"), ProgramKind::Subprogram);
     }
 }
