@@ -10,7 +10,7 @@
 
 use super::source_file::read_source_file;
 use crate::analysis::library::{LibraryProgram, ProgramLibrary};
-use crate::ide::workspace::{program_name_and_kind, FileKind};
+use crate::ide::workspace::{call_rank, macro_file_rank, program_name_and_kind, FileKind};
 use std::collections::{HashMap, HashSet};
 use std::fs;
 use std::path::{Component, Path, PathBuf};
@@ -284,29 +284,6 @@ fn own_and_parent_folders(program: &Path, config_dir: Option<&Path>) -> Vec<Sear
     folders
 }
 
-/// How a file answers a call of its program name: the lower the better. Subprograms come before main
-/// programs (the control searches `_SPF` before `_MPF`), and a name as written on a PC (`PART2.SPF`)
-/// before the control's own form (`_N_PART2_SPF`).
-fn program_rank(file_name: &str, program: &str, kind: FileKind) -> Option<u8> {
-    let kind_rank = match kind {
-        FileKind::Subprogram => 0,
-        FileKind::MainProgram => 2,
-        FileKind::Definitions | FileKind::Other => return None,
-    };
-    let control_form = !file_name.to_ascii_uppercase().starts_with(program);
-    Some(kind_rank + u8::from(control_form))
-}
-
-/// Where a definition file comes in the control's reading order within a folder.
-fn definition_rank(program: &str) -> u8 {
-    match program {
-        "SMAC" => 0,
-        "MMAC" => 1,
-        "UMAC" => 2,
-        _ => 3,
-    }
-}
-
 /// Lists `folder` (and with `recursive` its subfolders, after its own files, in sorted order). A
 /// folder that cannot be read lists nothing: its programs stay unknown.
 fn list_folder(folder: &Path, recursive: bool) -> Listing {
@@ -341,8 +318,8 @@ fn list_folder(folder: &Path, recursive: bool) -> Listing {
             }
             let (program, kind) = program_name_and_kind(&file_name);
             if kind == FileKind::Definitions {
-                definitions.push((definition_rank(&program), relative));
-            } else if let Some(rank) = program_rank(&file_name, &program, kind) {
+                definitions.push((macro_file_rank(&program), relative));
+            } else if let Some(rank) = call_rank(&file_name) {
                 // The first file of the best rank wins: files of a folder before its subfolders'.
                 if best.get(&program).is_none_or(|(known, _)| rank < *known) {
                     best.insert(program, (rank, relative));

@@ -217,15 +217,23 @@ impl Shared {
     /// The folders the index reads: the workspace folders and the configured cycle folders
     /// (relative ones taken from the first workspace folder).
     fn index_roots(&self) -> Vec<PathBuf> {
-        let info = lock(&self.info).clone();
-        let mut roots = info.workspace_folders.clone();
-        for folder in &lock(&self.settings).cycle_folders {
-            match (&info.workspace_root, folder.is_relative()) {
-                (Some(root), true) => roots.push(root.join(folder)),
-                _ => roots.push(folder.clone()),
-            }
-        }
+        let mut roots = lock(&self.info).workspace_folders.clone();
+        roots.extend(self.cycle_folders());
         roots
+    }
+
+    /// The folders of the `cycleFolders` setting, in its order (relative ones taken from the first
+    /// workspace folder).
+    pub(super) fn cycle_folders(&self) -> Vec<PathBuf> {
+        let workspace_root = lock(&self.info).workspace_root.clone();
+        lock(&self.settings)
+            .cycle_folders
+            .iter()
+            .map(|folder| match (&workspace_root, folder.is_relative()) {
+                (Some(root), true) => root.join(folder),
+                _ => folder.clone(),
+            })
+            .collect()
     }
 
     /// Starts indexing the workspace again (at start, and when folders, settings or a
