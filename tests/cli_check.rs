@@ -432,3 +432,85 @@ fn oversized_file_is_refused_and_the_others_checked() {
     );
     assert!(result.stdout.contains("error[S101]"), "{}", result.stdout);
 }
+
+#[test]
+fn cycle_folders_must_exist_and_leave_the_findings_unchanged() {
+    let dir = TestDir::new("cycles");
+    let program = dir.write("ERR.MPF", PROGRAM_WITH_ERROR);
+    let cycles = dir.path.join("cycles");
+    fs::create_dir_all(&cycles).unwrap();
+    let without = check(&[&program]);
+
+    let with = run([
+        OsStr::new("check"),
+        OsStr::new("--cycles"),
+        cycles.as_os_str(),
+        OsStr::new("--cycles"),
+        dir.path.as_os_str(),
+        program.as_os_str(),
+    ]);
+    assert_eq!(with.exit_code, 1, "{}{}", with.stdout, with.stderr);
+    assert_eq!(with.stdout, without.stdout);
+    assert_eq!(with.stderr, "");
+
+    let missing = dir.path.join("no-such-cycles");
+    let result = run([
+        OsStr::new("check"),
+        OsStr::new("--cycles"),
+        cycles.as_os_str(),
+        OsStr::new("--cycles"),
+        missing.as_os_str(),
+        program.as_os_str(),
+    ]);
+    assert_eq!(result.exit_code, 2, "{}{}", result.stdout, result.stderr);
+    // Nothing is checked: the programs would be read without the cycles the user named.
+    assert_eq!(result.stdout, "");
+    assert!(
+        result.stderr.starts_with(&format!(
+            "error: {}: the folder given with --cycles cannot be read: ",
+            missing.display()
+        )),
+        "{}",
+        result.stderr
+    );
+
+    let result = run([
+        OsStr::new("check"),
+        OsStr::new("--cycles"),
+        program.as_os_str(),
+        program.as_os_str(),
+    ]);
+    assert_eq!(result.exit_code, 2, "{}{}", result.stdout, result.stderr);
+    assert!(
+        result
+            .stderr
+            .contains("given with --cycles, but not a folder"),
+        "{}",
+        result.stderr
+    );
+}
+
+#[test]
+fn the_control_s_file_names_say_whether_a_program_is_a_main_program() {
+    let dir = TestDir::new("control-names");
+    // A feed move without F: an error in a main program, which starts without a feed; none in a
+    // subprogram, which inherits the caller's.
+    let text: &[u8] = b"N10 G1 X10\nN20 M30\n";
+    let main = dir.write("_N_MAIN_MPF", text);
+    let sub = dir.write("_N_MAIN_SPF", text);
+    let archived_main = dir.write("_N_PART_MPF.txt", text);
+    let (result, diagnostics) = check_json(&[&main, &sub, &archived_main]);
+    assert_eq!(result.exit_code, 1, "{}{}", result.stdout, result.stderr);
+    let files: Vec<&str> = diagnostics
+        .iter()
+        .filter(|diagnostic| diagnostic["code"] == "A203")
+        .map(|diagnostic| diagnostic["file"].as_str().unwrap())
+        .collect();
+    assert_eq!(
+        files,
+        [
+            main.display().to_string(),
+            archived_main.display().to_string()
+        ]
+    );
+}

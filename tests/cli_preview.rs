@@ -177,3 +177,28 @@ fn svg_thins_out_long_programs() {
     // The thinned path still ends where the program ends.
     assert!(stdout.contains(" L 1000 6\""), "the last point is kept");
 }
+
+#[test]
+fn cycle_folders_must_exist() {
+    let folder =
+        std::env::temp_dir().join(format!("sinumerik-preview-cycles-{}", std::process::id()));
+    std::fs::create_dir_all(&folder).unwrap();
+    let program = folder.join("MAIN.MPF");
+    std::fs::write(&program, "N10 G0 X10\n").unwrap();
+    let missing = folder.join("no-such-cycles");
+    let program = program.to_str().unwrap();
+    let folder_name = folder.to_str().unwrap();
+    let (code, stdout, stderr) = preview(&["--format", "csv", "--cycles", folder_name, program]);
+    let (without_code, without, _) = preview(&["--format", "csv", program]);
+    let (missing_code, missing_stdout, missing_stderr) =
+        preview(&["--cycles", missing.to_str().unwrap(), program]);
+    std::fs::remove_dir_all(&folder).unwrap();
+    assert_eq!((code, without_code), (0, 0), "{stderr}");
+    assert_eq!(stdout, without);
+    assert_eq!(missing_code, 2);
+    assert_eq!(missing_stdout, "");
+    assert!(
+        missing_stderr.contains("the folder given with --cycles cannot be read"),
+        "{missing_stderr}"
+    );
+}

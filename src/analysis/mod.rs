@@ -55,6 +55,32 @@ impl ProgramKind {
             _ => ProgramKind::Subprogram,
         }
     }
+
+    /// The kind by file name or path: the control's own names say it (`_N_PART1_MPF` is a main
+    /// program, `_N_PART1_SPF` a subprogram, with or without an extension after them, as archives
+    /// and transfers add one); any other name goes by its extension as in
+    /// [`ProgramKind::from_extension`]. A path's folders are ignored, whether written with `/` or `\`.
+    pub fn from_file_name(name: &str) -> ProgramKind {
+        let base = name.rsplit(['/', '\\']).next().unwrap_or(name);
+        let (stem, extension) = match base.rfind('.') {
+            Some(dot) if dot > 0 => (&base[..dot], Some(&base[dot + 1..])),
+            _ => (base, None),
+        };
+        // Compared as bytes: a name may hold any characters, and slicing a `str` inside one panics.
+        let stem = stem.as_bytes();
+        let is_control_name = |suffix: &[u8]| {
+            stem.len() > 3 + suffix.len()
+                && stem[..3].eq_ignore_ascii_case(b"_N_")
+                && stem[stem.len() - suffix.len()..].eq_ignore_ascii_case(suffix)
+        };
+        if is_control_name(b"_MPF") {
+            ProgramKind::Main
+        } else if is_control_name(b"_SPF") {
+            ProgramKind::Subprogram
+        } else {
+            ProgramKind::from_extension(extension)
+        }
+    }
 }
 
 /// Parses and interprets a whole main program.
@@ -130,4 +156,38 @@ pub fn is_proc_header(line: &str) -> bool {
     line.trim_start()
         .get(..4)
         .is_some_and(|word| word.eq_ignore_ascii_case("PROC"))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_kind_comes_from_the_control_s_file_names_and_from_extensions() {
+        for (name, kind) in [
+            ("_N_PART1_MPF", ProgramKind::Main),
+            ("_n_part1_mpf", ProgramKind::Main),
+            ("_N_PART1_SPF", ProgramKind::Subprogram),
+            ("_N_PART1_MPF.txt", ProgramKind::Main),
+            ("_N_PART1_MPF.SPF", ProgramKind::Main),
+            ("_N_PART1_SPF.MPF", ProgramKind::Subprogram),
+            ("/nc/_N_WKS_DIR/_N_A_WPD/_N_MAIN_MPF", ProgramKind::Main),
+            ("C:\\nc\\_N_MAIN_MPF", ProgramKind::Main),
+            ("PART1.MPF", ProgramKind::Main),
+            ("part1.mpf", ProgramKind::Main),
+            ("a/b/PART1.SPF", ProgramKind::Subprogram),
+            ("CONTOUR.DRS", ProgramKind::Subprogram),
+            ("MPF", ProgramKind::Subprogram),
+            // The name between `_N_` and the type must not be empty.
+            ("_N_MPF", ProgramKind::Subprogram),
+            ("_N__MPF", ProgramKind::Subprogram),
+            ("_N_X_MPF", ProgramKind::Main),
+            ("_N_ÄÖ_MPF", ProgramKind::Main),
+            ("ÄÖÜ", ProgramKind::Subprogram),
+            ("PART1_MPF", ProgramKind::Subprogram),
+            ("", ProgramKind::Subprogram),
+        ] {
+            assert_eq!(ProgramKind::from_file_name(name), kind, "{name}");
+        }
+    }
 }

@@ -43,6 +43,8 @@ pub(crate) struct PreviewOptions {
     /// Above this many segments the SVG picture thins runs of moves out.
     pub max_segments: usize,
     pub config_path: Option<PathBuf>,
+    /// Folders of cycles and subprograms searched after the program's own folders, in this order.
+    pub cycles: Vec<PathBuf>,
     pub path: PathBuf,
 }
 
@@ -61,6 +63,8 @@ pub(crate) struct CheckOptions {
     pub config_path: Option<PathBuf>,
     /// Extensions (lower case, without dot) that replace the configured ones when walking folders.
     pub extensions: Option<Vec<String>>,
+    /// Folders of cycles and subprograms searched after the program's own folders, in this order.
+    pub cycles: Vec<PathBuf>,
     pub paths: Vec<PathBuf>,
 }
 
@@ -126,6 +130,7 @@ fn parse_check(parser: &mut lexopt::Parser) -> Result<Command, UsageError> {
         format: OutputFormat::Human,
         config_path: None,
         extensions: None,
+        cycles: Vec::new(),
         paths: Vec::new(),
     };
     while let Some(arg) = parser.next()? {
@@ -149,6 +154,7 @@ fn parse_check(parser: &mut lexopt::Parser) -> Result<Command, UsageError> {
                 let list = parser.value()?.string()?;
                 options.extensions = Some(parse_extension_list(&list)?);
             }
+            Long("cycles") => options.cycles.push(PathBuf::from(parser.value()?)),
             Value(path) => options.paths.push(PathBuf::from(path)),
             other => return Err(other.unexpected().into()),
         }
@@ -165,6 +171,7 @@ fn parse_preview(parser: &mut lexopt::Parser) -> Result<Command, UsageError> {
     let mut format = PreviewFormat::Json;
     let mut max_segments = 20_000;
     let mut config_path = None;
+    let mut cycles = Vec::new();
     let mut paths = Vec::new();
     while let Some(arg) = parser.next()? {
         match arg {
@@ -184,6 +191,7 @@ fn parse_preview(parser: &mut lexopt::Parser) -> Result<Command, UsageError> {
                 };
             }
             Long("config") => config_path = Some(PathBuf::from(parser.value()?)),
+            Long("cycles") => cycles.push(PathBuf::from(parser.value()?)),
             Long("max-segments") => {
                 let value = parser.value()?.string()?;
                 max_segments = value
@@ -205,6 +213,7 @@ fn parse_preview(parser: &mut lexopt::Parser) -> Result<Command, UsageError> {
             format,
             max_segments,
             config_path,
+            cycles,
             path: paths.remove(0),
         })),
         0 => Err(UsageError(
@@ -364,6 +373,7 @@ mod tests {
         );
         assert_eq!(options.config_path, None);
         assert_eq!(options.extensions, None);
+        assert!(options.cycles.is_empty());
 
         let options = check_options(&[
             "check",
@@ -382,6 +392,42 @@ mod tests {
             Some(vec!["mpf".to_string(), "spf".to_string(), "nc".to_string()])
         );
         assert_eq!(options.paths, vec![PathBuf::from("-odd-name.mpf")]);
+    }
+
+    #[test]
+    fn cycle_folders_are_kept_in_the_order_given() {
+        let options = check_options(&[
+            "check",
+            "--cycles",
+            "cst",
+            "a.mpf",
+            "--cycles=cma",
+            "--cycles",
+            "cst",
+        ]);
+        assert_eq!(
+            options.cycles,
+            vec![
+                PathBuf::from("cst"),
+                PathBuf::from("cma"),
+                PathBuf::from("cst")
+            ]
+        );
+        assert_eq!(options.paths, vec![PathBuf::from("a.mpf")]);
+        match parse(&["preview", "--cycles", "cus", "a.mpf", "--cycles", "cma"]) {
+            Ok(Command::Preview(options)) => {
+                assert_eq!(
+                    options.cycles,
+                    vec![PathBuf::from("cus"), PathBuf::from("cma")]
+                );
+                assert_eq!(options.path, PathBuf::from("a.mpf"));
+            }
+            other => panic!("{other:?}"),
+        }
+        assert!(parse(&["check", "a.mpf", "--cycles"])
+            .unwrap_err()
+            .0
+            .contains("--cycles"));
     }
 
     #[test]

@@ -2,6 +2,7 @@
 //! and prints what it reports.
 
 use super::args::{CheckOptions, OutputFormat};
+use super::library::ProgramFiles;
 use super::report::{self, JsonDiagnostic, ProgramLines, SeverityCounts};
 use super::source_file::read_source_file;
 use super::{EXIT_ERRORS_FOUND, EXIT_OK, EXIT_TROUBLE};
@@ -36,6 +37,15 @@ pub(crate) fn run_check(
     ) else {
         return Ok(EXIT_TROUBLE);
     };
+    // Like a configuration given explicitly, the cycle folders apply to every program: without
+    // them no program would be checked as asked.
+    let program_files = match ProgramFiles::new(&options.cycles) {
+        Ok(program_files) => program_files,
+        Err(message) => {
+            problems.report(message);
+            return Ok(EXIT_TROUBLE);
+        }
+    };
 
     let files = collect_program_files(&options.paths, &mut configs, &mut problems);
 
@@ -58,12 +68,25 @@ pub(crate) fn run_check(
             }
         };
         n_checked_files += 1;
+        // The programs this one calls are found through its library, which lists folders and reads
+        // files only when asked.
+        let library = program_files.library_for(path, configs.config_dir_for(folder).as_deref());
 
-        // The checker returns the diagnostics sorted by line and column, the order people read in.
-        let kind = crate::analysis::ProgramKind::from_extension(
-            path.extension().and_then(|extension| extension.to_str()),
+        // The checker returns the diagnostics sorted by line and column, the order people read in:
+        // those of reading the program block by block, and those of running it.
+        let kind = crate::analysis::ProgramKind::from_file_name(&path.to_string_lossy());
+        let mut line_diagnostics = crate::analysis::diagnose_program(&source.text, &config, kind);
+        let run_findings = crate::analysis::execution::execution_findings(
+            &source.text,
+            &config,
+            kind,
+            library.as_ref(),
+            &config.execution,
         );
-        let line_diagnostics = crate::analysis::diagnose_program(&source.text, &config, kind);
+        if !run_findings.is_empty() {
+            line_diagnostics.extend(run_findings);
+            line_diagnostics.sort_by_key(|item| (item.line, item.diagnostic.span.start()));
+        }
         let lines = ProgramLines::new(&source.text);
         let path_text = path.display().to_string();
         for (index, line_diagnostic) in line_diagnostics.iter().enumerate() {
@@ -132,7 +155,10 @@ pub(super) fn run_configs(
             }
         },
     };
-    Some(ConfigCache::new(fixed_config, extensions))
+    Some(ConfigCache::new(
+        fixed_config.map(|config| (config_path.unwrap_or(Path::new("")), config)),
+        extensions,
+    ))
 }
 
 /// The files named on the command line and the program files below the folders named there, in
@@ -238,6 +264,8 @@ pub(super) fn walk_folder(
 /// or the defaults. Both the search and the parsing are cached, and a broken file is reported once.
 pub(super) struct ConfigCache {
     fixed: Option<Rc<MachineConfig>>,
+    /// The folder of the file given with `--config`.
+    fixed_dir: Option<PathBuf>,
     extensions_override: Option<Vec<String>>,
     default: Rc<MachineConfig>,
     config_file_by_folder: HashMap<PathBuf, Option<PathBuf>>,
@@ -246,9 +274,17 @@ pub(super) struct ConfigCache {
 }
 
 impl ConfigCache {
-    fn new(fixed: Option<MachineConfig>, extensions_override: Option<Vec<String>>) -> ConfigCache {
+    /// `fixed`: the file given with `--config` and its configuration.
+    fn new(
+        fixed: Option<(&Path, MachineConfig)>,
+        extensions_override: Option<Vec<String>>,
+    ) -> ConfigCache {
+        let fixed_dir = fixed
+            .as_ref()
+            .map(|(path, _)| path.parent().unwrap_or(Path::new("")).to_path_buf());
         ConfigCache {
-            fixed: fixed.map(|config| Rc::new(with_extensions(config, &extensions_override))),
+            fixed: fixed.map(|(_, config)| Rc::new(with_extensions(config, &extensions_override))),
+            fixed_dir,
             default: Rc::new(with_extensions(
                 MachineConfig::default(),
                 &extensions_override,
@@ -268,12 +304,7 @@ impl ConfigCache {
         if let Some(fixed) = &self.fixed {
             return Some(Rc::clone(fixed));
         }
-        let config_file = self
-            .config_file_by_folder
-            .entry(folder.to_path_buf())
-            .or_insert_with(|| discover_config_file(folder))
-            .clone();
-        let Some(config_file) = config_file else {
+        let Some(config_file) = self.config_file_for(folder) else {
             return Some(Rc::clone(&self.default));
         };
         if let Some(cached) = self.config_by_file.get(&config_file) {
@@ -288,6 +319,25 @@ impl ConfigCache {
         };
         self.config_by_file.insert(config_file, loaded.clone());
         loaded
+    }
+
+    /// The folder of the configuration file the programs in `folder` use (the one given with
+    /// `--config`, or the nearest `sinumerik.toml`), or `None` when they use the defaults. The search
+    /// for called programs goes up to this folder.
+    pub(super) fn config_dir_for(&mut self, folder: &Path) -> Option<PathBuf> {
+        if self.fixed.is_some() {
+            return self.fixed_dir.clone();
+        }
+        let config_file = self.config_file_for(folder)?;
+        config_file.parent().map(Path::to_path_buf)
+    }
+
+    /// The nearest `sinumerik.toml` of `folder`, searched once per folder.
+    fn config_file_for(&mut self, folder: &Path) -> Option<PathBuf> {
+        self.config_file_by_folder
+            .entry(folder.to_path_buf())
+            .or_insert_with(|| discover_config_file(folder))
+            .clone()
     }
 }
 
@@ -313,5 +363,36 @@ impl ProblemReporter<'_> {
         self.any_problem = true;
         // If stderr itself cannot be written there is nobody left to tell; the exit code still says it.
         let _ = writeln!(self.stderr, "error: {message}");
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_configuration_s_folder_is_the_nearest_sinumerik_toml_s_or_that_of_config() {
+        let root =
+            std::env::temp_dir().join(format!("sinumerik-lsp-config-dir-{}", std::process::id()));
+        let _ = fs::remove_dir_all(&root);
+        fs::create_dir_all(root.join("a/b")).unwrap();
+        fs::write(root.join("sinumerik.toml"), "").unwrap();
+        fs::write(root.join("a/other.toml"), "").unwrap();
+        let mut stderr = Vec::new();
+        let mut problems = ProblemReporter {
+            stderr: &mut stderr,
+            any_problem: false,
+        };
+
+        let mut configs = run_configs(None, None, &mut problems).unwrap();
+        let nearest = configs.config_dir_for(&root.join("a/b"));
+        let given = root.join("a/other.toml");
+        let mut fixed = run_configs(Some(&given), None, &mut problems).unwrap();
+        let fixed_dir = fixed.config_dir_for(&root.join("a/b"));
+        fs::remove_dir_all(&root).unwrap();
+
+        assert_eq!(nearest.as_deref(), Some(root.as_path()));
+        assert_eq!(fixed_dir, Some(root.join("a")));
+        assert!(!problems.any_problem);
     }
 }

@@ -5,11 +5,13 @@
 //!   the checker, exit codes.
 //! - `report.rs`: the human and JSON output formats and the byte-span to character-column conversion.
 //! - `source_file.rs`: reading program files: size limit, UTF-8 with Windows-1252 fallback, BOM.
+//! - `library.rs`: the programs a program calls, found in its folder, the parents up to its
+//!   `sinumerik.toml` and the `--cycles` folders.
 //! - `fmt.rs`, `renumber.rs`: the rewriting commands; `rewrite.rs`: what they share (writing a file
 //!   back in its own encoding, `--check`).
 //!
 //! ```text
-//! sinumerik-lsp check [--format human|json] [--config FILE] [--extensions mpf,spf] PATH...
+//! sinumerik-lsp check [--format human|json] [--config FILE] [--extensions mpf,spf] [--cycles DIR]... PATH...
 //! sinumerik-lsp --help | --version
 //! ```
 //!
@@ -26,6 +28,7 @@
 mod args;
 mod check;
 mod fmt;
+pub mod library;
 pub(crate) mod preview;
 mod preview_json;
 mod preview_svg;
@@ -49,7 +52,8 @@ const USAGE: &str = "\
 Usage:
   sinumerik-lsp [serve]                  the language server on stdin and stdout
   sinumerik-lsp check [OPTIONS] PATH...  check programs (folders recursively)
-  sinumerik-lsp preview [--format json|csv|svg] [--max-segments N] [--config FILE] FILE
+  sinumerik-lsp preview [--format json|csv|svg] [--max-segments N] [--config FILE]
+                        [--cycles DIR]... FILE
                                          the resolved end point of every move
   sinumerik-lsp fmt [--check] [--config FILE] PATH...
                                          normalise spacing and letter case in place
@@ -63,9 +67,14 @@ Options of check:
   --format human|json   output format (default: human)
   --config FILE         use this configuration for every program
   --extensions LIST     extensions read from folders (default: mpf,spf)
+  --cycles DIR          a folder of cycles and subprograms (with its subfolders)
+                        where called programs are looked for; repeatable, searched
+                        in the order given (also for preview)
 
 Without --config, each program uses the sinumerik.toml in its folder or the
 nearest folder above it, else the defaults of a metric milling machine.
+A called program is looked for in the caller's folder, then in the folders
+above it up to the one of its sinumerik.toml, then in the --cycles folders.
 
 Exit codes: 0 no errors found, 1 errors found, 2 usage, file or configuration
 problem. fmt and renumber: 0 done (or nothing to change), 1 with --check when a
@@ -166,6 +175,7 @@ mod tests {
         let (exit_code, stdout, _) = run_captured(&["--help"]);
         assert_eq!(exit_code, EXIT_OK);
         assert!(stdout.contains("--extensions"), "{stdout}");
+        assert!(stdout.contains("--cycles DIR"), "{stdout}");
         let (exit_code, stdout, _) = run_captured(&["--version"]);
         assert_eq!(exit_code, EXIT_OK);
         assert_eq!(

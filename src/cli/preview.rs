@@ -1,6 +1,7 @@
 //! `preview`: the resolved moves of one program as JSON or CSV, for tools and for the toolpath view.
 
 use super::args::{PreviewFormat, PreviewOptions};
+use super::library::ProgramFiles;
 use super::preview_json::{self, round};
 use super::report::ProgramLines;
 use super::source_file::read_source_file;
@@ -11,15 +12,23 @@ use crate::analysis::{diagnose_program, Move, ProgramKind};
 use crate::config::{discover_config_file, load_config_file, MachineConfig};
 use crate::diagnostics::{LineDiagnostic, Severity, Span};
 use std::io::{self, Write};
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
 pub(crate) fn run_preview(
     options: &PreviewOptions,
     stdout: &mut dyn Write,
     stderr: &mut dyn Write,
 ) -> io::Result<u8> {
-    let config = match config_for(options) {
+    let config_path = config_path_for(options);
+    let config = match config_for(config_path.as_deref()) {
         Ok(config) => config,
+        Err(message) => {
+            writeln!(stderr, "sinumerik-lsp: {message}")?;
+            return Ok(EXIT_TROUBLE);
+        }
+    };
+    let program_files = match ProgramFiles::new(&options.cycles) {
+        Ok(program_files) => program_files,
         Err(message) => {
             writeln!(stderr, "sinumerik-lsp: {message}")?;
             return Ok(EXIT_TROUBLE);
@@ -36,20 +45,18 @@ pub(crate) fn run_preview(
             return Ok(EXIT_TROUBLE);
         }
     };
-    let kind = ProgramKind::from_extension(
-        options
-            .path
-            .extension()
-            .and_then(|extension| extension.to_str()),
-    );
-    let library = crate::analysis::library::NoLibrary;
+    let kind = ProgramKind::from_file_name(&options.path.to_string_lossy());
+    // The programs this one calls are found through its library, which lists folders and reads files
+    // only when asked.
+    let library =
+        program_files.library_for(&options.path, config_path.as_deref().and_then(Path::parent));
     let execution_options = config.execution.clone();
     let run = |visit: &mut dyn FnMut(ExecutedMove)| {
         run_program(
             &source.text,
             &config,
             kind,
-            &library,
+            library.as_ref(),
             &execution_options,
             visit,
         )
@@ -176,13 +183,18 @@ pub(crate) fn line_columns(line: &str, span: Span) -> (usize, usize) {
     ProgramLines::new(line).columns(0, span)
 }
 
-fn config_for(options: &PreviewOptions) -> Result<MachineConfig, String> {
-    let path = match &options.config_path {
+/// The configuration file the program uses: the one given with `--config`, else the nearest
+/// `sinumerik.toml`, else none (the defaults).
+fn config_path_for(options: &PreviewOptions) -> Option<PathBuf> {
+    match &options.config_path {
         Some(path) => Some(path.clone()),
         None => discover_config_file(options.path.parent().unwrap_or(Path::new("."))),
-    };
+    }
+}
+
+fn config_for(path: Option<&Path>) -> Result<MachineConfig, String> {
     match path {
-        Some(path) => load_config_file(&path).map_err(|error| error.to_string()),
+        Some(path) => load_config_file(path).map_err(|error| error.to_string()),
         None => Ok(MachineConfig::default()),
     }
 }

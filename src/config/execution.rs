@@ -80,7 +80,10 @@ impl RawExecution {
             options.max_levels = usize::try_from(value)
                 .ok()
                 .filter(|value| (1..=64).contains(value))
-                .ok_or(("max_levels", format!("must be between 1 and 64, found {value}")))?;
+                .ok_or((
+                    "max_levels",
+                    format!("must be between 1 and 64, found {value}"),
+                ))?;
         }
         if let Some(value) = &self.subprogram_entry {
             options.entry = match value.as_str() {

@@ -78,6 +78,34 @@ pub fn program_name_and_kind(file_name: &str) -> (String, FileKind) {
     (stem, kind)
 }
 
+/// How well the file `file_name` (a name or path) answers a call of its program name, the lower the
+/// better, or `None` when it holds no program a call can run. Subprograms come before main programs
+/// (the control searches `_SPF` before `_MPF`), and a name as written on a PC (`PART2.SPF`) before
+/// the control's own form (`_N_PART2_SPF`).
+pub fn call_rank(file_name: &str) -> Option<u8> {
+    let (program, kind) = program_name_and_kind(file_name);
+    let kind_rank = match kind {
+        FileKind::Subprogram => 0,
+        FileKind::MainProgram => 2,
+        FileKind::Definitions | FileKind::Other => return None,
+    };
+    let base = file_name.rsplit(['/', '\\']).next().unwrap_or(file_name);
+    let control_form = !base.to_ascii_uppercase().starts_with(&program);
+    Some(kind_rank + u8::from(control_form))
+}
+
+/// Where a definition file of the program name `program` comes in the order the control reads the
+/// macro files of a folder: `_N_SMAC_DEF`, `_N_MMAC_DEF`, `_N_UMAC_DEF` (system, machine
+/// manufacturer, user), then the others.
+pub fn macro_file_rank(program: &str) -> u8 {
+    match program {
+        "SMAC" => 0,
+        "MMAC" => 1,
+        "UMAC" => 2,
+        _ => 3,
+    }
+}
+
 /// The file name (without folder) that makes the file of `file_name` hold the program `program`, in
 /// the same style: `PART2.SPF` becomes `PART3.SPF`, `part2.spf` becomes `part3.spf` and the control's
 /// own `_N_PART2_SPF` becomes `_N_PART3_SPF`. The control finds a program by its file name, so a
@@ -280,6 +308,27 @@ mod tests {
                 "{file}"
             );
         }
+    }
+
+    #[test]
+    fn calls_prefer_subprograms_and_pc_file_names() {
+        for (file, rank) in [
+            ("PART2.SPF", Some(0)),
+            ("/nc/part2.spf", Some(0)),
+            ("_N_PART2_SPF", Some(1)),
+            ("C:\\nc\\_n_part2_spf.txt", Some(1)),
+            ("PART2.MPF", Some(2)),
+            ("_N_PART2_MPF", Some(3)),
+            ("_N_PART2.SPF", Some(0)),
+            ("GUD.DEF", None),
+            ("_N_SMAC_DEF", None),
+            ("PART2.TXT", None),
+        ] {
+            assert_eq!(call_rank(file), rank, "{file}");
+        }
+        assert!(macro_file_rank("SMAC") < macro_file_rank("MMAC"));
+        assert!(macro_file_rank("MMAC") < macro_file_rank("UMAC"));
+        assert!(macro_file_rank("UMAC") < macro_file_rank("AAA"));
     }
 
     #[test]

@@ -2,7 +2,7 @@
 //! (its current text) or for a file on disk, optionally for some of its lines only.
 
 use crate::analysis::document::{DocumentAnalysis, LineSource, TextLines};
-use crate::analysis::library::NoLibrary;
+use crate::analysis::library::ProgramLibrary;
 use crate::analysis::ProgramKind;
 use crate::cli::preview::{line_columns, write_executed_preview_json, write_preview_json};
 use crate::cli::source_file::read_source_file;
@@ -81,8 +81,9 @@ pub fn preview_open(
     analysed: &Analysed,
     label: &str,
     lines: LineSelection,
+    library: &dyn ProgramLibrary,
 ) -> Result<Value, String> {
-    let execution = analysed.execution(&NoLibrary);
+    let execution = analysed.execution(library);
     preview(
         &analysed.analysis,
         &execution,
@@ -99,16 +100,11 @@ pub fn preview_file(
     config: Arc<MachineConfig>,
     kind: ProgramKind,
     lines: LineSelection,
+    library: &dyn ProgramLibrary,
 ) -> Result<Value, String> {
     let source = read_source_file(path).map_err(|error| format!("{}: {error}", path.display()))?;
     let text_lines = TextLines::new(&source.text);
     let analysis = DocumentAnalysis::new(&text_lines, Arc::clone(&config), kind);
-    let execution = execute_document(
-        &text_lines,
-        &config,
-        kind,
-        &NoLibrary,
-        &config.execution,
-    );
+    let execution = execute_document(&text_lines, &config, kind, library, &config.execution);
     preview(&analysis, &execution, &text_lines, label, lines)
 }

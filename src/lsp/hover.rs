@@ -25,6 +25,7 @@ use tower_lsp_server::ls_types::{Hover, HoverContents, MarkupContent, MarkupKind
 /// and the byte offset) gives the word's documentation, shown above the block's state.
 pub fn hover(
     analysed: &Analysed,
+    library: &dyn crate::analysis::library::ProgramLibrary,
     position: Position,
     encoding: PositionEncoding,
     documentation: impl FnOnce(&str, usize, usize) -> Option<Documentation>,
@@ -57,7 +58,7 @@ pub fn hover(
         || analysed.analysis.kind() == crate::analysis::ProgramKind::Subprogram;
     let run_summary = needs_run
         .then(|| {
-            let execution = analysed.execution(&crate::analysis::library::NoLibrary);
+            let execution = analysed.execution(library);
             crate::ide::execution::execution_summary(&execution, line_idx)
         })
         .flatten();

@@ -11,6 +11,7 @@
 //! - `hover.rs`, `inlay.rs`, `code_action.rs`, `endpoint_preview.rs`: one feature each.
 //! - `words.rs`: where the words of a block are, for the cursor.
 //! - `settings.rs`: settings and each document's machine configuration; `ext.rs`: own protocol types.
+//! - `library.rs`: the programs a document calls, found through the workspace index.
 //! - `outgoing.rs`: all output; the server's own notifications serialized straight to text.
 //! - `log.rs`: logging and slow-handler reports; `memory.rs`: the allocator's options.
 //! - `framing.rs`: drops malformed messages before they reach the framework's reader.
@@ -33,6 +34,7 @@ mod frozen_bytes;
 mod hover;
 mod inlay;
 mod json_string;
+mod library;
 mod log;
 mod memory;
 mod navigation;

@@ -94,19 +94,13 @@ pub fn file_path(uri: &Uri) -> Option<PathBuf> {
     uri.to_file_path().map(|path| path.into_owned())
 }
 
+/// The kind of a document by its file name (`_N_PART1_MPF` and `PART1.MPF` are main programs), or by
+/// the last segment of its URI when it is not a file.
 fn program_kind(uri: &Uri, path: Option<&Path>) -> ProgramKind {
-    let extension = match path {
-        Some(path) => path
-            .extension()
-            .and_then(|extension| extension.to_str())
-            .map(str::to_string),
-        None => uri
-            .path()
-            .as_str()
-            .rsplit_once('.')
-            .map(|(_, extension)| extension.to_string()),
-    };
-    ProgramKind::from_extension(extension.as_deref())
+    match path {
+        Some(path) => ProgramKind::from_file_name(&path.to_string_lossy()),
+        None => ProgramKind::from_file_name(uri.path().as_str()),
+    }
 }
 
 /// The language server: a handle on the shared state.
@@ -223,15 +217,23 @@ impl Shared {
     /// The folders the index reads: the workspace folders and the configured cycle folders
     /// (relative ones taken from the first workspace folder).
     fn index_roots(&self) -> Vec<PathBuf> {
-        let info = lock(&self.info).clone();
-        let mut roots = info.workspace_folders.clone();
-        for folder in &lock(&self.settings).cycle_folders {
-            match (&info.workspace_root, folder.is_relative()) {
-                (Some(root), true) => roots.push(root.join(folder)),
-                _ => roots.push(folder.clone()),
-            }
-        }
+        let mut roots = lock(&self.info).workspace_folders.clone();
+        roots.extend(self.cycle_folders());
         roots
+    }
+
+    /// The folders of the `cycleFolders` setting, in its order (relative ones taken from the first
+    /// workspace folder).
+    pub(super) fn cycle_folders(&self) -> Vec<PathBuf> {
+        let workspace_root = lock(&self.info).workspace_root.clone();
+        lock(&self.settings)
+            .cycle_folders
+            .iter()
+            .map(|folder| match (&workspace_root, folder.is_relative()) {
+                (Some(root), true) => root.join(folder),
+                _ => folder.clone(),
+            })
+            .collect()
     }
 
     /// Starts indexing the workspace again (at start, and when folders, settings or a
@@ -675,10 +677,24 @@ impl LanguageServer for Backend {
         let uri = params.text_document_position_params.text_document.uri;
         let shared = Arc::clone(&self.shared);
         let document_uri = uri.clone();
+        let library = crate::lsp::library::workspace_library(&shared, file_path(&uri).as_deref());
         self.on_analysis(&uri, move |analysed| {
-            hover(analysed, position, encoding, |line_text, line, byte| {
-                navigation::documentation(&shared, analysed, &document_uri, line_text, line, byte)
-            })
+            hover(
+                analysed,
+                library.as_ref(),
+                position,
+                encoding,
+                |line_text, line, byte| {
+                    navigation::documentation(
+                        &shared,
+                        analysed,
+                        &document_uri,
+                        line_text,
+                        line,
+                        byte,
+                    )
+                },
+            )
         })
         .await
     }
@@ -962,10 +978,14 @@ impl LanguageServer for Backend {
         let label = file_path(&preview.uri)
             .map(|path| path.display().to_string())
             .unwrap_or_else(|| preview.uri.as_str().to_string());
+        let library = crate::lsp::library::workspace_library(
+            &self.shared,
+            file_path(&preview.uri).as_deref(),
+        );
         if self.documents.get(&preview.uri).is_some() {
             let result = self
                 .on_analysis(&preview.uri, move |analysed| {
-                    endpoint_preview::preview_open(analysed, &label, lines)
+                    endpoint_preview::preview_open(analysed, &label, lines, library.as_ref())
                 })
                 .await?;
             return result.map(Some).map_err(Error::invalid_params);
@@ -979,10 +999,29 @@ impl LanguageServer for Backend {
         let config = self.machine_config(Some(&path));
         let kind = program_kind(&preview.uri, Some(&path));
         let result = tokio::task::spawn_blocking(move || {
-            endpoint_preview::preview_file(&path, &label, config, kind, lines)
+            endpoint_preview::preview_file(&path, &label, config, kind, lines, library.as_ref())
         })
         .await
         .map_err(|_| Error::internal_error())?;
         result.map(Some).map_err(Error::invalid_params)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::str::FromStr;
+
+    #[test]
+    fn a_document_s_kind_comes_from_its_file_name() {
+        let kind = |uri: &str| {
+            let uri = Uri::from_str(uri).unwrap();
+            program_kind(&uri, file_path(&uri).as_deref())
+        };
+        assert_eq!(kind("file:///nc/_N_MAIN_MPF"), ProgramKind::Main);
+        assert_eq!(kind("file:///nc/_N_MAIN_SPF"), ProgramKind::Subprogram);
+        assert_eq!(kind("file:///nc/main.mpf"), ProgramKind::Main);
+        assert_eq!(kind("untitled:_N_MAIN_MPF"), ProgramKind::Main);
+        assert_eq!(kind("untitled:Untitled-1"), ProgramKind::Subprogram);
     }
 }

@@ -19,6 +19,7 @@ use crate::ide::cross_file_diagnostics::cross_file_diagnostics;
 use crate::ide::symbols::SymbolTable;
 use crate::ide::{DocumentId, WorkspaceIndex};
 use crate::lsp::documents::{lock, Analysed, OpenDocument};
+use crate::lsp::library::LibraryTexts;
 use crate::lsp::server::{file_path, Shared};
 use crate::lsp::settings::machine_config_for;
 use crate::lsp::text_document::RopeLines;
@@ -75,6 +76,11 @@ impl IndexState {
         !self.non_ascii.contains(id)
     }
 
+    /// Whether the document's entry comes from the editor (its text there is the current one).
+    pub fn is_open(&self, id: &str) -> bool {
+        self.open.contains_key(id)
+    }
+
     fn insert(
         &mut self,
         id: DocumentId,
@@ -114,6 +120,9 @@ pub struct Workspace {
     /// Held while the cross-file findings are computed: two computations at once could store the
     /// findings of the older index last.
     refreshing: Mutex<()>,
+    /// The texts of called programs read from disk, dropped when the index sees their file change;
+    /// every change of the index is told to it, so that the documents' libraries look up again.
+    pub(super) library_texts: LibraryTexts,
 }
 
 /// The index's name for a document.
@@ -231,6 +240,8 @@ impl Workspace {
         }
         state.open.insert(Arc::clone(id), revision);
         state.insert(Arc::clone(id), uri.clone(), &file_name(uri), symbols, ascii);
+        // Told after the index changed: a lookup that saw the old entry is not kept.
+        self.library_texts.index_changed();
     }
 
     /// Reads a file that is not open into the index (or removes it when it cannot be read).
@@ -250,7 +261,15 @@ impl Workspace {
                 // The document may have been opened meanwhile: the editor's text wins.
                 if !state.open.contains_key(&id) {
                     let ascii = source.text.is_ascii();
-                    state.insert(id, uri, &path.to_string_lossy(), symbols, ascii);
+                    state.insert(
+                        Arc::clone(&id),
+                        uri,
+                        &path.to_string_lossy(),
+                        symbols,
+                        ascii,
+                    );
+                    drop(state);
+                    self.library_texts.file_changed(&id);
                 }
             }
             Err(_) => self.remove_from_disk(&id),
@@ -261,6 +280,8 @@ impl Workspace {
         let mut state = self.write();
         if !state.open.contains_key(id) {
             state.remove(id);
+            drop(state);
+            self.library_texts.file_changed(id);
         }
     }
 
@@ -494,6 +515,8 @@ fn index_roots(
     cancel: &AtomicBool,
     events: &mpsc::UnboundedSender<RunEvent>,
 ) -> Option<usize> {
+    // Any file may have changed while nobody watched (the folders or the settings changed).
+    shared.workspace.library_texts.clear();
     let mut files = Vec::new();
     for root in roots {
         collect_program_files(root, &mut files, cancel);

@@ -160,6 +160,22 @@ pub fn entry_assumptions(
         .collect()
 }
 
+/// The findings of running `text`, without building any move: what `check` adds to the findings of
+/// reading the program block by block.
+pub fn execution_findings(
+    text: &str,
+    config: &MachineConfig,
+    kind: ProgramKind,
+    library: &dyn ProgramLibrary,
+    options: &ExecutionOptions,
+) -> Vec<LineDiagnostic> {
+    let mut ignore = |_: ExecutedMove| {};
+    interpreter::Interpreter::new(config, library, options, &mut ignore)
+        .counting_only()
+        .run(Arc::from(text), kind)
+        .findings
+}
+
 /// Runs a program like [`execute`] and keeps its moves.
 pub fn execute_collecting(
     text: &str,

@@ -1,0 +1,347 @@
+//! The server's [`ProgramLibrary`]: the programs an open document calls, found through the workspace
+//! index (program names from file names, `_N_PART2_SPF` as `PART2`). Where several files hold a
+//! program of the name, the one the control would run wins: in the caller's folder, then in the
+//! folders above it, then in the cycle folders in the order of the `cycleFolders` setting; after them
+//! the rest of the workspace, whose programs the cross-file checks also know. A subprogram comes
+//! before a main program, a file named as on a PC (`PART2.SPF`) before the control's own name.
+//!
+//! A found file that is open gives its text as the editor has it now; any other is read from disk
+//! when first asked for and kept until the index sees the file change ([`LibraryTexts`]). A library
+//! forgets what it found whenever the index changes, so that a document never runs a callee's
+//! replaced text for longer than the index's own debounce.
+//!
+//! Lock order: a lookup takes the index's `state` lock for reading, and a document's `text` lock
+//! after releasing it; it must not be called while the caller holds the index's lock.
+
+use crate::analysis::library::{LibraryProgram, ProgramLibrary};
+use crate::cli::source_file::read_source_file;
+use crate::ide::workspace::{call_rank, macro_file_rank, FileKind, IndexedDocument};
+use crate::ide::{DocumentId, WorkspaceIndex};
+use crate::lsp::documents::lock;
+use crate::lsp::server::Shared;
+use std::collections::HashMap;
+use std::path::{Path, PathBuf};
+use std::sync::{Arc, Mutex, Weak};
+use tower_lsp_server::ls_types::Uri;
+
+/// The texts of files on disk that libraries read, by document id, until the index sees the file
+/// change; and the generation of the index, which every change of an entry advances.
+#[derive(Default)]
+pub struct LibraryTexts {
+    state: Mutex<TextsState>,
+}
+
+#[derive(Default)]
+struct TextsState {
+    generation: u64,
+    /// `None` for a file that could not be read.
+    texts: HashMap<DocumentId, Option<Arc<str>>>,
+}
+
+impl LibraryTexts {
+    /// Advances with every change of the index: what a library found before may be out of date.
+    pub fn generation(&self) -> u64 {
+        lock(&self.state).generation
+    }
+
+    /// An entry of the index changed (an open document's, whose text libraries do not keep).
+    pub fn index_changed(&self) {
+        lock(&self.state).generation += 1;
+    }
+
+    /// The file of `id` changed on disk or went away: it is read again when asked for.
+    pub fn file_changed(&self, id: &str) {
+        let mut state = lock(&self.state);
+        state.texts.remove(id);
+        state.generation += 1;
+    }
+
+    /// Every file may have changed (a new indexing run).
+    pub fn clear(&self) {
+        let mut state = lock(&self.state);
+        state.texts.clear();
+        state.generation += 1;
+    }
+
+    /// The text of `id`, read with `read` unless it is kept. A text read while the file changed is
+    /// returned but not kept: the change may have come after the reading.
+    fn text(&self, id: &DocumentId, read: impl FnOnce() -> Option<Arc<str>>) -> Option<Arc<str>> {
+        let generation = {
+            let state = lock(&self.state);
+            if let Some(text) = state.texts.get(id) {
+                return text.clone();
+            }
+            state.generation
+        };
+        // The lock is not held while the file is read: other lookups go on meanwhile.
+        let text = read();
+        let mut state = lock(&self.state);
+        if state.generation == generation {
+            state.texts.insert(Arc::clone(id), text.clone());
+        }
+        text
+    }
+}
+
+/// The library of one open document. Cheap to create: it holds the folders above the document and
+/// looks everything else up when asked.
+pub struct WorkspaceLibrary {
+    shared: Weak<Shared>,
+    /// The document's folder and the folders above it, nearest first; empty when it is no file.
+    folders: Vec<PathBuf>,
+    cache: Mutex<FoundCache>,
+}
+
+/// What a library found since the index's generation `generation`.
+#[derive(Default)]
+struct FoundCache {
+    generation: u64,
+    found: HashMap<String, Option<Arc<LibraryProgram>>>,
+    macro_files: Option<Vec<Arc<LibraryProgram>>>,
+}
+
+/// A file the lookup chose, with what is needed to get its text once the index's lock is released.
+struct Chosen {
+    id: DocumentId,
+    uri: Option<Uri>,
+    name: String,
+}
+
+/// The library through which the analysis of the document at `path` (`None` when it is not a file)
+/// finds the programs it calls.
+pub fn workspace_library(shared: &Arc<Shared>, path: Option<&Path>) -> Arc<dyn ProgramLibrary> {
+    Arc::new(WorkspaceLibrary::new(shared, path))
+}
+
+impl WorkspaceLibrary {
+    pub fn new(shared: &Arc<Shared>, path: Option<&Path>) -> WorkspaceLibrary {
+        WorkspaceLibrary {
+            shared: Arc::downgrade(shared),
+            folders: folders_above(path),
+            cache: Mutex::default(),
+        }
+    }
+
+    fn look_up(&self, shared: &Shared, name: &str) -> Option<Arc<LibraryProgram>> {
+        let cycles = shared.cycle_folders();
+        let chosen = {
+            let state = shared.workspace.read();
+            let order = LookupOrder {
+                folders: &self.folders,
+                cycles: &cycles,
+            };
+            order
+                .best_program(&state.index, name, |id| state.is_open(id))
+                .map(|document| chosen(&state, document))
+        }?;
+        self.program(shared, chosen)
+    }
+
+    fn read_macro_files(&self, shared: &Shared) -> Vec<Arc<LibraryProgram>> {
+        let cycles = shared.cycle_folders();
+        let chosen: Vec<Chosen> = {
+            let state = shared.workspace.read();
+            let order = LookupOrder {
+                folders: &self.folders,
+                cycles: &cycles,
+            };
+            order
+                .macro_files(&state.index)
+                .into_iter()
+                .map(|document| chosen(&state, document))
+                .collect()
+        };
+        chosen
+            .into_iter()
+            .filter_map(|chosen| self.program(shared, chosen))
+            .collect()
+    }
+
+    /// The program of a chosen file with its current text.
+    fn program(&self, shared: &Shared, chosen: Chosen) -> Option<Arc<LibraryProgram>> {
+        // An open document's entry may still be the file's until its edits pause: the editor's text
+        // is asked for whatever the entry says.
+        let open_text = chosen
+            .uri
+            .as_ref()
+            .and_then(|uri| shared.documents.get(uri))
+            .map(|document| Arc::<str>::from(document.text_snapshot().rope.to_string()));
+        let text = match open_text {
+            Some(text) => text,
+            None => shared.workspace.library_texts.text(&chosen.id, || {
+                read_source_file(Path::new(chosen.id.as_ref()))
+                    .ok()
+                    .map(|source| Arc::from(source.text))
+            })?,
+        };
+        let path = match &chosen.uri {
+            Some(uri) => Arc::from(uri.as_str()),
+            None => Arc::clone(&chosen.id),
+        };
+        Some(Arc::new(LibraryProgram {
+            name: chosen.name,
+            path,
+            text,
+        }))
+    }
+}
+
+/// Runs `look_up` unless `cache` holds a result from the index's generation `generation`, and keeps
+/// its result unless the index changed meanwhile (`current_generation`).
+fn cached<T: Clone>(
+    cache: &Mutex<FoundCache>,
+    generation: u64,
+    current_generation: impl FnOnce() -> u64,
+    get: impl FnOnce(&FoundCache) -> Option<T>,
+    put: impl FnOnce(&mut FoundCache, T),
+    look_up: impl FnOnce() -> T,
+) -> T {
+    {
+        let mut cache = lock(cache);
+        if cache.generation != generation {
+            *cache = FoundCache {
+                generation,
+                ..FoundCache::default()
+            };
+        }
+        if let Some(value) = get(&cache) {
+            return value;
+        }
+    }
+    // The cache is not locked during the lookup, which may read files.
+    let value = look_up();
+    if current_generation() == generation {
+        let mut cache = lock(cache);
+        if cache.generation == generation {
+            put(&mut cache, value.clone());
+        }
+    }
+    value
+}
+
+fn chosen(state: &crate::lsp::workspace::IndexState, document: &IndexedDocument) -> Chosen {
+    Chosen {
+        id: Arc::clone(&document.id),
+        uri: state.uri(&document.id).cloned(),
+        name: document.program_name.clone(),
+    }
+}
+
+impl ProgramLibrary for WorkspaceLibrary {
+    fn find(&self, name: &str) -> Option<Arc<LibraryProgram>> {
+        let shared = self.shared.upgrade()?;
+        let name = name.to_ascii_uppercase();
+        let texts = &shared.workspace.library_texts;
+        cached(
+            &self.cache,
+            texts.generation(),
+            || texts.generation(),
+            |cache| cache.found.get(&name).cloned(),
+            |cache, found| {
+                cache.found.insert(name.clone(), found);
+            },
+            || self.look_up(&shared, &name),
+        )
+    }
+
+    /// The definition files of the index that define macros (`.DEF`, `_N_SMAC_DEF`, ...): those of the
+    /// document's folder and the folders above it first, then the cycle folders', then the rest; in
+    /// a folder `_N_SMAC_DEF`, `_N_MMAC_DEF`, `_N_UMAC_DEF`, then the others by path.
+    fn macro_files(&self) -> Vec<Arc<LibraryProgram>> {
+        let Some(shared) = self.shared.upgrade() else {
+            return Vec::new();
+        };
+        let texts = &shared.workspace.library_texts;
+        cached(
+            &self.cache,
+            texts.generation(),
+            || texts.generation(),
+            |cache| cache.macro_files.clone(),
+            |cache, files| cache.macro_files = Some(files),
+            || self.read_macro_files(&shared),
+        )
+    }
+}
+
+/// The folder of the file at `path` and the folders above it, nearest first.
+fn folders_above(path: Option<&Path>) -> Vec<PathBuf> {
+    path.and_then(Path::parent)
+        .map(|folder| folder.ancestors().map(Path::to_path_buf).collect())
+        .unwrap_or_default()
+}
+
+/// The order in which a document looks for the programs it calls.
+struct LookupOrder<'a> {
+    /// The document's folder and the folders above it, nearest first.
+    folders: &'a [PathBuf],
+    /// The cycle folders, in the order of the setting.
+    cycles: &'a [PathBuf],
+}
+
+impl LookupOrder<'_> {
+    /// Where a document comes: its folder's place among the caller's folders, then among the cycle
+    /// folders (which hold their subfolders' files too), then everything else (documents that are no
+    /// file among them).
+    fn folder_rank(&self, id: &str) -> usize {
+        let path = Path::new(id);
+        if !path.is_absolute() {
+            return usize::MAX;
+        }
+        if let Some(place) = path
+            .parent()
+            .and_then(|folder| self.folders.iter().position(|known| known == folder))
+        {
+            return place;
+        }
+        self.cycles
+            .iter()
+            .position(|cycles| path.starts_with(cycles))
+            .map_or(usize::MAX, |place| self.folders.len() + place)
+    }
+
+    /// The document a call of `name` (upper case) runs; `is_open` says whether a document is open
+    /// in the editor, which wins over a file elsewhere that would rank the same.
+    fn best_program<'i>(
+        &self,
+        index: &'i WorkspaceIndex,
+        name: &str,
+        is_open: impl Fn(&str) -> bool,
+    ) -> Option<&'i IndexedDocument> {
+        index
+            .documents()
+            .filter(|document| {
+                document.program_name == name
+                    && matches!(document.kind, FileKind::Subprogram | FileKind::MainProgram)
+            })
+            .filter_map(|document| {
+                let rank = call_rank(&document.id)?;
+                let key = (self.folder_rank(&document.id), rank, !is_open(&document.id));
+                Some((key, document))
+            })
+            // The index iterates by id: among equals the first id wins, on every run alike.
+            .min_by(|(left, _), (right, _)| left.cmp(right))
+            .map(|(_, document)| document)
+    }
+
+    /// The definition files that define macros, in reading order.
+    fn macro_files<'i>(&self, index: &'i WorkspaceIndex) -> Vec<&'i IndexedDocument> {
+        let mut files: Vec<&IndexedDocument> = index
+            .documents()
+            .filter(|document| {
+                document.kind == FileKind::Definitions && !document.symbols.macros.is_empty()
+            })
+            .collect();
+        // Stable: equal ranks keep the index's order by id.
+        files.sort_by_key(|document| {
+            (
+                self.folder_rank(&document.id),
+                macro_file_rank(&document.program_name),
+            )
+        });
+        files
+    }
+}
+
+#[cfg(test)]
+#[path = "library_tests.rs"]
+mod tests;
