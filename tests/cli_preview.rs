@@ -63,10 +63,58 @@ fn csv_has_a_row_per_move_and_unknown_axes_empty() {
     std::fs::remove_dir_all(&folder).unwrap();
     assert_eq!(code, 0);
     let lines: Vec<&str> = stdout.lines().collect();
-    assert_eq!(lines[0], "line,block,motion,X,Y,Z,A,B,C,feed,uncertain");
-    assert_eq!(lines[1], "1,N10,G0,10,,,,,,,");
-    assert_eq!(lines[2], "2,N20,G0,10,,,,,,,Y");
+    assert_eq!(
+        lines[0],
+        "line,block,motion,X,Y,Z,A,B,C,feed,uncertain,pass,file"
+    );
+    assert_eq!(lines[1], "1,N10,G0,10,,,,,,,,,");
+    assert_eq!(lines[2], "2,N20,G0,10,,,,,,,Y,,");
     assert_eq!(lines.len(), 3);
+}
+
+#[test]
+fn a_loop_and_a_call_are_run_and_their_moves_say_pass_file_and_stack() {
+    let folder = std::env::temp_dir().join(format!("sinumerik-preview-run-{}", std::process::id()));
+    std::fs::create_dir_all(&folder).unwrap();
+    let program = folder.join("MAIN.MPF");
+    std::fs::write(
+        &program,
+        "N10 G90 G0 X0 Y0\nN20 FOR R1=1 TO 2\nN30 G0 X=R1*10\nN40 ENDFOR\nN50 SIDE P2\nN60 M30\n",
+    )
+    .unwrap();
+    std::fs::write(folder.join("SIDE.SPF"), "N10 G91 G0 Y5\nN20 M17\n").unwrap();
+    let (code, stdout, stderr) = preview(&[program.to_str().unwrap()]);
+    let csv = preview(&["--format", "csv", program.to_str().unwrap()]).1;
+    std::fs::remove_dir_all(&folder).unwrap();
+    assert_eq!(code, 0, "{stderr}");
+    let json: serde_json::Value = serde_json::from_str(&stdout).unwrap();
+    let moves = json["moves"].as_array().unwrap();
+    let summary: Vec<(u64, Option<u64>, f64, Option<f64>)> = moves
+        .iter()
+        .map(|movement| {
+            (
+                movement["line"].as_u64().unwrap(),
+                movement["pass"].as_u64(),
+                movement["end"]["X"].as_f64().unwrap(),
+                movement["end"]["Y"].as_f64(),
+            )
+        })
+        .collect();
+    assert_eq!(
+        summary,
+        vec![
+            (1, None, 0.0, Some(0.0)),
+            (3, Some(1), 10.0, Some(0.0)),
+            (3, Some(2), 20.0, Some(0.0)),
+            (1, Some(1), 20.0, Some(5.0)),
+            (1, Some(2), 20.0, Some(10.0)),
+        ]
+    );
+    let called = &moves[3];
+    assert!(called["file"].as_str().unwrap().ends_with("SIDE.SPF"), "{called}");
+    assert_eq!(called["stack"][0]["line"], 5);
+    assert!(called["stack"][0]["file"].is_null());
+    assert!(csv.lines().nth(4).unwrap().ends_with("SIDE.SPF"), "{csv}");
 }
 
 #[test]
