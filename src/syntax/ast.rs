@@ -398,6 +398,7 @@ impl DataType {
 /// One name of a `DEF` with its array sizes and initial value: `TAB[3,4]=REP(0)`.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Declarator {
+    /// The whole name, also where `names` has only its first letter (`V1AR`, reported as S162).
     pub name: Span,
     /// The array sizes, one per dimension (the control allows up to three); empty for a scalar.
     pub dimensions: Vec<ExprId>,
