@@ -684,7 +684,7 @@ impl<'a> Engine<'a> {
                 } => {
                     self.apply_assignment(line, block, target, *target_span, *value, diagnostics);
                 }
-                Statement::Definition { names, span } => {
+                Statement::Definition { names, span, .. } => {
                     // LUD variables start at zero; an initial value is not followed yet.
                     let initialised = line[span.start()..span.end()].contains('=');
                     for name in names {

@@ -85,6 +85,7 @@ pub fn position_reads(
             Statement::Assignment { .. }
             | Statement::Definition { .. }
             | Statement::Structure { .. }
+            | Statement::CaseBranch { .. }
             | Statement::Jump { .. } => {}
             _ => return READS_ALL,
         }

@@ -11,6 +11,7 @@
 use crate::analysis::document::LineSource;
 use crate::config::MachineConfig;
 use crate::diagnostics::{Diagnostic, Span};
+use crate::ide::names::repeat_count_letter;
 use crate::ide::LineEdit;
 use crate::syntax::ast::{Block, ExprKind, Statement, ValueExpr};
 use crate::syntax::lexer::{lex_line_into, Lexeme, Token};
@@ -99,7 +100,7 @@ impl LineFormatter {
             return None;
         }
         lex_line_into(line, &mut self.lexemes);
-        let starts = element_starts(&self.block);
+        let starts = element_starts(&self.block, &self.lexemes);
         let number_end = self.block.number.map(|number| number.span.end());
         let formatted = respace(line, &self.lexemes, &starts, number_end, self.options);
         if formatted == line {
@@ -131,8 +132,9 @@ impl LineFormatter {
 }
 
 /// Byte offsets where an element of the block starts: the skip marker, the block number, the label
-/// and each statement. A blank is written before each of them.
-fn element_starts(block: &Block) -> Vec<usize> {
+/// and each statement. A blank is written before each of them. The value of a CASE branch is no
+/// element of its own, and the count `P` of a REPEAT is one, as they were before the parser kept them.
+fn element_starts(block: &Block, lexemes: &[Lexeme]) -> Vec<usize> {
     let mut starts: Vec<usize> = Vec::new();
     if let Some((_, span)) = block.skip {
         starts.push(span.start());
@@ -143,12 +145,18 @@ fn element_starts(block: &Block) -> Vec<usize> {
     if let Some(label) = block.label {
         starts.push(label.start());
     }
-    starts.extend(
-        block
-            .statements
-            .iter()
-            .map(|statement| statement.span().start()),
-    );
+    for statement in &block.statements {
+        match statement {
+            Statement::CaseBranch { .. } => {}
+            Statement::SectionRepeat { span, .. } | Statement::BlockRepeat { span, .. } => {
+                starts.push(span.start());
+                if let Some(letter) = repeat_count_letter(lexemes, *span) {
+                    starts.push(letter.start());
+                }
+            }
+            _ => starts.push(statement.span().start()),
+        }
+    }
     starts.sort_unstable();
     starts
 }
@@ -290,6 +298,15 @@ fn fingerprint(block: &Block, diagnostics: &[Diagnostic], lexemes: &[Lexeme]) ->
             Statement::ProcedureHeader { parameters, .. } => parameters
                 .iter()
                 .for_each(|name| push_span(&mut out, 63, *name)),
+            Statement::SectionRepeat { start, end, .. } => {
+                push_span(&mut out, 64, *start);
+                if let Some(end) = end {
+                    push_span(&mut out, 65, *end);
+                }
+            }
+            Statement::BlockRepeat {
+                label: Some(label), ..
+            } => push_span(&mut out, 66, *label),
             _ => {}
         }
     }
@@ -322,6 +339,9 @@ fn statement_tag(statement: &Statement) -> u64 {
         Statement::Return { .. } => 11,
         Statement::Instruction { .. } => 12,
         Statement::SyncCondition { .. } => 13,
+        Statement::SectionRepeat { .. } => 14,
+        Statement::BlockRepeat { .. } => 15,
+        Statement::CaseBranch { .. } => 16,
     }
 }
 
@@ -379,6 +399,28 @@ mod tests {
         );
         assert_eq!(formatted("   \n"), "\n");
         assert_eq!(formatted("/1n10g0x1\n"), "/1 N10 G0 X1\n");
+    }
+
+    #[test]
+    fn repetitions_case_blocks_and_declarations_keep_their_layout() {
+        assert_eq!(
+            formatted("n20 repeat  lbl1   lbl2  p=3 ; c\n"),
+            "N20 REPEAT LBL1 LBL2 P=3     ; c\n"
+        );
+        assert_eq!(formatted("repeatb lbl1 p=2\n"), "REPEATB LBL1 P=2\n");
+        // The value of a CASE branch is no element of its own: no blank is put before it.
+        assert_eq!(
+            formatted("case r1 of(1)gotof l1 default gotof l2\n"),
+            "CASE R1 OF(1) GOTOF L1 DEFAULT GOTOF L2\n"
+        );
+        assert_eq!(
+            formatted("def real  tab[3]=( 1 , 2 ,3 ), bb=sin( 30 )\n"),
+            "DEF REAL TAB[3]=(1, 2,3), BB=SIN(30)\n"
+        );
+        assert_eq!(
+            formatted("proc sub( real pa=5 , var real tt[ , ] ) save\n"),
+            "PROC SUB(REAL PA=5, VAR REAL TT[,]) SAVE\n"
+        );
     }
 
     #[test]

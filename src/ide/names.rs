@@ -1,10 +1,47 @@
-//! Small helpers about names shared by the features: the name part of a parsed span, and which names
-//! the language reserves (keywords, G functions, addresses) so that rename can refuse them.
+//! Small helpers about names shared by the features: the name part of a parsed span, which names
+//! the language reserves (keywords, G functions, addresses) so that rename can refuse them, and which
+//! parts of a parsed block the features read.
 
 use crate::config::MachineConfig;
 use crate::diagnostics::Span;
+use crate::syntax::ast::{Block, Expr, Statement};
 use crate::syntax::gcodes::GCode;
 use crate::syntax::keywords;
+use crate::syntax::lexer::{Lexeme, Token};
+
+/// The expression nodes of a block that the features read as uses of names, numbers and functions:
+/// all but the initial values, array sizes and defaults of `DEF` and `PROC`. The features take what
+/// a declaration declares from the statement itself; its values are kept for running the program.
+pub fn expressions_outside_declarations(block: &Block) -> impl Iterator<Item = &Expr> {
+    // A declaration reads the rest of its block, so a block has at most one, and only a block with
+    // one pays for the comparison.
+    let declaration = block
+        .statements
+        .iter()
+        .rev()
+        .find_map(|statement| match statement {
+            Statement::Definition { span, .. } | Statement::ProcedureHeader { span, .. } => {
+                Some(*span)
+            }
+            _ => None,
+        });
+    block.exprs.iter().filter(move |expr| {
+        declaration.is_none_or(|declaration| {
+            expr.span.start() < declaration.start() || expr.span.start() >= declaration.end()
+        })
+    })
+}
+
+/// The address letter `P` of the count of a `REPEAT` or `REPEATB` statement with this span, when the
+/// statement has a `P` word: the first one-letter token after the keyword (the labels are names).
+pub fn repeat_count_letter(lexemes: &[Lexeme], statement_span: Span) -> Option<Span> {
+    let first = lexemes.partition_point(|lexeme| lexeme.span.start() <= statement_span.start());
+    lexemes[first..]
+        .iter()
+        .take_while(|lexeme| lexeme.span.end() <= statement_span.end())
+        .find(|lexeme| lexeme.token == Some(Token::Letter))
+        .map(|lexeme| lexeme.span)
+}
 
 /// The span of the identifier that starts `span` in `line`: a `Name` node's span also covers its
 /// `[...]` indexes, and features want the name alone.

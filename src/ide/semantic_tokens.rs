@@ -7,7 +7,10 @@
 use crate::analysis::document::LineSource;
 use crate::config::MachineConfig;
 use crate::diagnostics::Span;
-use crate::ide::names::{identifier_prefix, is_type_name, text_of, upper};
+use crate::ide::names::{
+    expressions_outside_declarations, identifier_prefix, is_type_name, repeat_count_letter,
+    text_of, upper,
+};
 use crate::ide::symbols::SymbolTable;
 use crate::syntax::ast::{
     AddressKind, AssignTarget, Block, ExprKind, JumpTarget, Statement, ValueExpr,
@@ -132,9 +135,9 @@ fn line_tokens(
         found.push((comment, TokenKind::Comment, 0));
     }
     for statement in &block.statements {
-        statement_tokens(line, statement, table, config, &mut found);
+        statement_tokens(line, statement, lexemes, table, config, &mut found);
     }
-    for expr in &block.exprs {
+    for expr in expressions_outside_declarations(block) {
         match &expr.kind {
             ExprKind::Number(_) => found.push((expr.span, TokenKind::Number, 0)),
             ExprKind::String => found.push((expr.span, TokenKind::String, 0)),
@@ -237,6 +240,7 @@ fn line_tokens(
 fn statement_tokens(
     line: &str,
     statement: &Statement,
+    lexemes: &[Lexeme],
     table: &SymbolTable,
     config: &MachineConfig,
     found: &mut Vec<(Span, TokenKind, u32)>,
@@ -349,6 +353,14 @@ fn statement_tokens(
             name: Some(name), ..
         } => found.push((*name, TokenKind::Subprogram, 0)),
         Statement::Instruction { name, .. } => found.push((*name, TokenKind::Function, 0)),
+        // Marked as when the statement was an instruction followed by the address word `P`: the
+        // keyword as an instruction, `P` as an address, the labels not at all.
+        Statement::SectionRepeat { span, .. } | Statement::BlockRepeat { span, .. } => {
+            found.push((identifier_prefix(line, *span), TokenKind::Function, 0));
+            if let Some(letter) = repeat_count_letter(lexemes, *span) {
+                found.push((letter, TokenKind::Address, 0));
+            }
+        }
         _ => {}
     }
 }

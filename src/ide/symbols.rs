@@ -1,14 +1,16 @@
 //! The symbol table of one document: labels, block numbers, `DEF` variables, R parameters, the `PROC`
 //! header, `DEFINE` macros, `EXTERN` declarations, calls, jumps, tool changes, comment sections and
-//! the names read or written as variables. Everything comes from the parser's blocks; only the parts
-//! the AST does not keep (the type of a `DEF`, the types of `PROC` parameters) are read from the
-//! lexer's tokens of the statement.
+//! the names read or written as variables. Everything comes from the parser's blocks; the type of a
+//! `DEF` and the types of `PROC` parameters are described as written (`STRING[32]`, `VAR REAL`), from
+//! the lexer's tokens of the statement.
 
 use crate::analysis::document::LineSource;
 use crate::config::MachineConfig;
 use crate::diagnostics::{Code, Span};
 pub use crate::ide::block_numbers::{BlockNumberEntry, BlockNumbers};
-use crate::ide::names::{identifier_prefix, is_type_name, text_of, upper};
+use crate::ide::names::{
+    expressions_outside_declarations, identifier_prefix, is_type_name, text_of, upper,
+};
 use crate::syntax::ast::{
     AddressKind, AssignTarget, Block, CallKind, ExprKind, JumpKind, JumpTarget, Statement,
     StructureKeyword, ValueExpr,
@@ -330,7 +332,7 @@ impl SymbolTable {
                 lexemes,
             );
         }
-        for expr in &block.exprs {
+        for expr in expressions_outside_declarations(block) {
             match &expr.kind {
                 ExprKind::Name { .. } => {
                     let span = identifier_prefix(line, expr.span);
@@ -512,7 +514,7 @@ impl SymbolTable {
                     reads_as_address_word: false,
                 });
             }
-            Statement::Definition { names, span } => {
+            Statement::Definition { names, span, .. } => {
                 self.add_definitions(line_index, line, names, *span, lexemes);
             }
             Statement::MacroDefinition {
@@ -529,6 +531,7 @@ impl SymbolTable {
                 name: Some(name),
                 parameters,
                 span,
+                ..
             } if self.procedure.is_none() => {
                 let (described, has_parameter_list) =
                     describe_parameters(line, *span, parameters, lexemes);

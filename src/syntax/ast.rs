@@ -366,6 +366,74 @@ pub enum StructureKeyword {
     Case,
 }
 
+/// The data types of `DEF` and of `PROC` parameters (reference §8.1).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum DataType {
+    Int,
+    Real,
+    Bool,
+    Char,
+    /// `STRING[n]`; the length is not kept.
+    String,
+    Axis,
+    Frame,
+}
+
+impl DataType {
+    /// The type a name (in upper case) stands for.
+    pub fn from_name(upper: &str) -> Option<DataType> {
+        Some(match upper {
+            "INT" => DataType::Int,
+            "REAL" => DataType::Real,
+            "BOOL" => DataType::Bool,
+            "CHAR" => DataType::Char,
+            "STRING" => DataType::String,
+            "AXIS" => DataType::Axis,
+            "FRAME" => DataType::Frame,
+            _ => return None,
+        })
+    }
+}
+
+/// One name of a `DEF` with its array sizes and initial value: `TAB[3,4]=REP(0)`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Declarator {
+    /// The whole name, also where `names` has only its first letter (`V1AR`, reported as S162).
+    pub name: Span,
+    /// The array sizes, one per dimension (the control allows up to three); empty for a scalar.
+    pub dimensions: Vec<ExprId>,
+    pub initial: Option<Initializer>,
+}
+
+/// The initial value of a `DEF` name.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Initializer {
+    /// `=5`, `="ABC"`, `=X`: one value.
+    Value(ExprId),
+    /// `=(1,2,3)` for an array: its elements in order; an empty element (`(1,,3)`) is `None`.
+    List(Vec<Option<ExprId>>),
+    /// `=SET(1,2,3)`: the same as a list.
+    Set(Vec<Option<ExprId>>),
+    /// `=REP(value)` fills the whole array, `=REP(value, count)` its first `count` elements.
+    Repeat {
+        value: ExprId,
+        count: Option<ExprId>,
+    },
+}
+
+/// One parameter of a `PROC` header: `REAL PA=5`, `VAR REAL TAB[,]`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ProcParameter {
+    pub name: Span,
+    pub data_type: Option<DataType>,
+    /// `VAR`: passed by reference, the caller must give a variable.
+    pub by_reference: bool,
+    /// The number of array dimensions: 1 for `A[]`, 2 for `A[,]`, 0 for a scalar.
+    pub dimensions: usize,
+    /// The value an omitted argument takes (`PROC SUB(REAL PA=5)`).
+    pub default: Option<ExprId>,
+}
+
 #[derive(Debug, Clone, PartialEq)]
 pub enum Statement {
     /// A G function written by number (`G1`) or by name (`DIAMON`, `TRANS`).
@@ -410,6 +478,10 @@ pub enum Statement {
     /// `DEF ...` declarations with the spans of the declared names.
     Definition {
         names: Vec<Span>,
+        /// The type written after the attributes; `None` when the definition names none.
+        data_type: Option<DataType>,
+        /// One entry per name in `names`, in the same order, with its array sizes and initial value.
+        declarators: Vec<Declarator>,
         span: Span,
     },
     /// `DEFINE name AS body`.
@@ -421,7 +493,15 @@ pub enum Statement {
     /// `PROC name(params) attributes`, with the spans of the parameter names.
     ProcedureHeader {
         name: Option<Span>,
+        /// The parameter names as the editor features read them: every name at the top level of the
+        /// list that ends a parameter, read token by token.
         parameters: Vec<Span>,
+        /// The parameters read one comma-separated entry at a time, with type, `VAR` and default.
+        /// An entry without a name (`INT` alone) has no element here.
+        params: Vec<ProcParameter>,
+        /// `SAVE` follows the parameter list: the caller's modal G functions and frames come back at
+        /// the return (reference §8.3).
+        save: bool,
         span: Span,
     },
     /// `EXTERN name(types)`.
@@ -438,6 +518,29 @@ pub enum Statement {
     Instruction {
         name: Span,
         args: Vec<Option<ExprId>>,
+        span: Span,
+    },
+    /// `REPEAT start [end|ENDLABEL] [P=count]`: runs the section from the label `start` to the label
+    /// `end` (with `ENDLABEL`: to the next block labelled `ENDLABEL:`; without either: to the block
+    /// before the REPEAT) again, `count` times (once when `P` is left out; reference §17.7).
+    SectionRepeat {
+        start: Span,
+        /// The second label, or the word `ENDLABEL`.
+        end: Option<Span>,
+        end_is_endlabel: bool,
+        count: Option<ExprId>,
+        span: Span,
+    },
+    /// `REPEATB label [P=count]`: runs the block with that label again `count` times.
+    BlockRepeat {
+        label: Option<Span>,
+        count: Option<ExprId>,
+        span: Span,
+    },
+    /// One branch of a `CASE` block: the value compared with the CASE expression (`None` for
+    /// `DEFAULT`). The branch's jump is the statement that follows.
+    CaseBranch {
+        value: Option<ExprId>,
         span: Span,
     },
     /// `WHEN`/`WHENEVER`/`FROM`/`EVERY` condition `DO`: the statements after it in the block are
@@ -463,6 +566,9 @@ impl Statement {
             | Statement::ExternDeclaration { span, .. }
             | Statement::Return { span }
             | Statement::Instruction { span, .. }
+            | Statement::SectionRepeat { span, .. }
+            | Statement::BlockRepeat { span, .. }
+            | Statement::CaseBranch { span, .. }
             | Statement::SyncCondition { span, .. } => *span,
             Statement::Address(word) => word.span,
         }

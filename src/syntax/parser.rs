@@ -9,7 +9,13 @@ use crate::syntax::gcodes::GCode;
 use crate::syntax::keywords::{self, StatementKeyword};
 use crate::syntax::lexer::{lex_line_into, Lexeme, Token};
 
+#[cfg(test)]
+mod declaration_tests;
+mod declarations;
+#[cfg(test)]
+mod flow_tests;
 mod plain_block;
+mod repeats;
 
 /// Deepest nesting of parentheses, brackets and unary operators the parser follows. Real programs stay
 /// far below; deeper input is reported (S170) and skipped in linear time.
@@ -142,6 +148,10 @@ struct Parser<'a> {
     condition_depth: u32,
     /// Greater than zero inside parentheses or brackets of an expression.
     group_depth: u32,
+    /// The REPEAT and REPEATB statements of the block, as the block checks read them.
+    repeats: Vec<repeats::RepeatWords>,
+    /// Whether a CASE branch was pushed: the block checks then leave such statements out.
+    has_case_branches: bool,
 }
 
 /// Letters that name axes when the machine configuration has such an axis (reference §1.7).
@@ -174,6 +184,8 @@ impl<'a> Parser<'a> {
             precedence_reported: false,
             condition_depth: 0,
             group_depth: 0,
+            repeats: Vec::new(),
+            has_case_branches: false,
         }
     }
 
@@ -1835,16 +1847,7 @@ impl<'a> Parser<'a> {
                     self.block.sync_actions_from = Some(self.block.statements.len());
                 }
             }
-            StatementKeyword::RepeatBackward => {
-                if self.is_at(Token::Identifier) {
-                    self.advance();
-                }
-                self.block.statements.push(Statement::Instruction {
-                    name: keyword_span,
-                    args: Vec::new(),
-                    span: self.span_since(keyword_span),
-                });
-            }
+            StatementKeyword::RepeatBackward => self.parse_block_repeat(keyword_span),
         }
     }
 
@@ -1938,15 +1941,21 @@ impl<'a> Parser<'a> {
                 }
                 // Pairs of `value GOTOF label`, then `DEFAULT GOTOF label`.
                 while !self.at_end() {
-                    if self.is_at(Token::Identifier)
+                    let (value, value_span) = if self.is_at(Token::Identifier)
                         && self.upper_name(self.current_span()) == "DEFAULT"
                     {
-                        self.advance();
+                        (None, self.advance())
                     } else {
-                        self.parse_expression();
-                    }
+                        let value = self.parse_expression();
+                        (Some(value), self.expr_span(value))
+                    };
                     match self.jump_keyword_here() {
                         Some(StatementKeyword::Jump(kind)) => {
+                            self.block.statements.push(Statement::CaseBranch {
+                                value,
+                                span: value_span,
+                            });
+                            self.has_case_branches = true;
                             let jump_span = self.advance();
                             self.parse_jump(kind, jump_span, None);
                         }
@@ -1966,14 +1975,7 @@ impl<'a> Parser<'a> {
             StructureKeyword::Repeat => {
                 // `REPEAT LABEL1 [LABEL2|ENDLABEL] P=n` repeats a section; `REPEAT` alone opens a loop.
                 if self.is_at(Token::Identifier) {
-                    while self.is_at(Token::Identifier) {
-                        self.advance();
-                    }
-                    self.block.statements.push(Statement::Instruction {
-                        name: keyword_span,
-                        args: Vec::new(),
-                        span: self.span_since(keyword_span),
-                    });
+                    self.parse_section_repeat(keyword_span);
                     return;
                 }
                 self.block.statements.push(Statement::Structure {
@@ -2187,9 +2189,11 @@ impl<'a> Parser<'a> {
     }
 
     /// `DEF [NCK|CHAN ...] TYPE name[=init], name2[dims]` — read leniently: only the declared names and
-    /// the balance of brackets are checked here.
+    /// the balance of brackets are checked here. Sizes and initial values are read afterwards
+    /// (`parser/declarations.rs`).
     fn parse_definition(&mut self, keyword_span: Span) {
         let mut names = Vec::new();
+        let mut data_type = None;
         let mut expect_name = false;
         let mut seen_type = false;
         let mut in_initializer = false;
@@ -2231,6 +2235,7 @@ impl<'a> Parser<'a> {
                         }
                     } else if !seen_type && is_type_name(&upper) {
                         seen_type = true;
+                        data_type = DataType::from_name(&upper);
                         expect_name = true;
                         if upper == "STRING" && self.is_at(Token::LeftBracket) {
                             expect_name = false;
@@ -2287,10 +2292,14 @@ impl<'a> Parser<'a> {
             };
             self.report(Code::ExpectedExpression, keyword_span, message);
         }
+        let declarators = self.parse_declarators(&names);
         let span = self.span_since(keyword_span);
-        self.block
-            .statements
-            .push(Statement::Definition { names, span });
+        self.block.statements.push(Statement::Definition {
+            names,
+            data_type,
+            declarators,
+            span,
+        });
     }
 
     /// A defined name must not be an address letter (`DEF REAL A`) and should start with two letters.
@@ -2370,6 +2379,7 @@ impl<'a> Parser<'a> {
             None
         };
         let mut parameters = Vec::new();
+        let list_start = self.position;
         if self.is_at(Token::LeftParen) {
             let open = self.advance();
             let mut depth = 1i32;
@@ -2404,13 +2414,20 @@ impl<'a> Parser<'a> {
             }
         }
         // Attributes such as SAVE, SBLOF, DISPLOF, ACTBLOCNO follow the parameter list.
+        let mut save = false;
         while !self.at_end() {
-            self.advance();
+            let token = self.peek();
+            let span = self.advance();
+            save |=
+                token == Some(Token::Identifier) && self.text(span).eq_ignore_ascii_case("SAVE");
         }
+        let params = self.parse_procedure_params(list_start);
         let span = self.span_since(keyword_span);
         self.block.statements.push(Statement::ProcedureHeader {
             name,
             parameters,
+            params,
+            save,
             span,
         });
     }
@@ -2956,11 +2973,23 @@ impl<'a> Parser<'a> {
     fn check_block(&mut self) {
         let statements = std::mem::take(&mut self.block.statements);
         let interpreted_count = self.block.sync_actions_from.unwrap_or(statements.len());
-        let interpreted = &statements[..interpreted_count.min(statements.len())];
+        // The findings quote the statements as they were before the parser kept repetitions and CASE
+        // branches (see `parser/repeats.rs`); a block with neither is checked as it is, without a copy.
+        if self.repeats.is_empty() && !self.has_case_branches {
+            let interpreted = &statements[..interpreted_count.min(statements.len())];
+            self.check_statements(interpreted);
+        } else {
+            let (checked, checked_interpreted) =
+                self.statements_as_checked(&statements, interpreted_count);
+            self.check_statements(&checked[..checked_interpreted]);
+        }
+        self.block.statements = statements;
+    }
+
+    fn check_statements(&mut self, interpreted: &[Statement]) {
         self.check_g_groups(interpreted);
         self.check_alone_instructions(interpreted);
         self.check_repeated_addresses(interpreted);
-        self.block.statements = statements;
     }
 
     fn check_g_groups(&mut self, statements: &[Statement]) {
