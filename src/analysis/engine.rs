@@ -684,18 +684,8 @@ impl<'a> Engine<'a> {
                 } => {
                     self.apply_assignment(line, block, target, *target_span, *value, diagnostics);
                 }
-                Statement::Definition { names, span, .. } => {
-                    // LUD variables start at zero; an initial value is not followed yet.
-                    let initialised = line[span.start()..span.end()].contains('=');
-                    for name in names {
-                        let upper = line[name.start()..name.end()].to_ascii_uppercase();
-                        let value = if initialised || self.flow_uncertain {
-                            None
-                        } else {
-                            Some(0.0)
-                        };
-                        self.state.variables.set_variable(&upper, value);
-                    }
+                Statement::Definition { declarators, .. } => {
+                    self.apply_definition(line, block, declarators, diagnostics);
                 }
                 Statement::Call { kind, .. } if *kind != CallKind::Modal && !call_followed => {
                     forget_after = true;
@@ -1050,6 +1040,29 @@ impl<'a> Engine<'a> {
             ValueExpr::Expr(id) => {
                 evaluate_or_report(block, line, id, &self.state.variables, diagnostics)
             }
+        }
+    }
+
+    /// `DEF`: LUD variables start at zero (reference §8.1), or at their initial value. Arrays and
+    /// lists of initial values are not followed: their elements are unknown.
+    fn apply_definition(
+        &mut self,
+        line: &str,
+        block: &Block,
+        declarators: &[Declarator],
+        diagnostics: &mut Vec<Diagnostic>,
+    ) {
+        for declarator in declarators {
+            let upper = line[declarator.name.start()..declarator.name.end()].to_ascii_uppercase();
+            let value = match (&declarator.initial, declarator.dimensions.is_empty()) {
+                _ if self.flow_uncertain => None,
+                (None, true) => Some(0.0),
+                (Some(Initializer::Value(id)), true) => {
+                    evaluate_or_report(block, line, *id, &self.state.variables, diagnostics)
+                }
+                _ => None,
+            };
+            self.state.variables.set_variable(&upper, value);
         }
     }
 

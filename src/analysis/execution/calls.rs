@@ -11,13 +11,16 @@ use crate::analysis::execution::paths::{
 use crate::analysis::execution::program::ProgramUnit;
 use crate::analysis::execution::{CallSite, ProgramEnd};
 use crate::diagnostics::{Code, Span};
-use crate::syntax::ast::{AddressKind, Block, CallKind, ExprId, Statement, ValueExpr};
+use crate::syntax::ast::{AddressKind, Block, CallKind, ExprId, ExprKind, Statement, ValueExpr};
 use std::sync::Arc;
 
 /// A call about to be run.
 pub(super) struct PendingCall {
     unit: usize,
     arguments: Vec<Argument>,
+    /// Per argument, the caller's variable it names (upper case, an R parameter as `R<n>`), for
+    /// parameters passed by reference.
+    targets: Vec<Option<String>>,
     repetitions: u32,
     /// The line of the call in the calling program.
     line: usize,
@@ -27,7 +30,9 @@ pub(super) struct PendingCall {
 /// What a subprogram's `PROC` line declares.
 #[derive(Debug, Clone, Default, PartialEq)]
 pub(super) struct ProcInfo {
-    parameters: Vec<String>,
+    /// The parameters in order: name, passed by reference (`VAR`), default value of an omitted
+    /// argument (`PROC SUB(REAL PA=5)`, else 0).
+    parameters: Vec<(String, bool, Option<f64>)>,
     save: bool,
 }
 
@@ -76,6 +81,7 @@ impl<'a, 's> Interpreter<'a, 's> {
         Some(PendingCall {
             unit: index,
             arguments,
+            targets: argument_targets(block, line, args),
             repetitions: repetitions(engine, block, line),
             line: pc,
             span,
@@ -117,6 +123,7 @@ impl<'a, 's> Interpreter<'a, 's> {
             Some(unit) => Some(PendingCall {
                 unit,
                 arguments: modal.arguments,
+                targets: Vec::new(),
                 repetitions: 1,
                 line: pc,
                 span: Span::default(),
@@ -157,12 +164,18 @@ impl<'a, 's> Interpreter<'a, 's> {
             frame: engine.state.frame,
         });
         let caller_locals = engine.state.variables.take_locals();
-        for (index, parameter) in info.parameters.iter().enumerate() {
+        let mut references = Vec::new();
+        for (index, (parameter, by_reference, default)) in info.parameters.iter().enumerate() {
             let value = match call.arguments.get(index) {
-                None | Some(Argument::Omitted) => Some(0.0),
+                None | Some(Argument::Omitted) => Some(default.unwrap_or(0.0)),
                 Some(Argument::Given(value)) => *value,
             };
             engine.state.variables.set_variable(parameter, value);
+            if *by_reference {
+                if let Some(Some(target)) = call.targets.get(index) {
+                    references.push((parameter.clone(), target.clone()));
+                }
+            }
         }
         let caller = control.level();
         let mut stack: Vec<CallSite> = caller.stack.to_vec();
@@ -178,12 +191,13 @@ impl<'a, 's> Interpreter<'a, 's> {
                 repetitions_left: call.repetitions.saturating_sub(1),
                 saved,
                 caller_locals,
-                references: Vec::new(),
+                references,
             })),
             retest_for: None,
             modal_call: None,
             jump_passes: Vec::new(),
             label_marks: Vec::new(),
+            repeats: Vec::new(),
             stack: Arc::from(stack),
         });
         Next::Moved
@@ -207,7 +221,21 @@ impl<'a, 's> Interpreter<'a, 's> {
         if let Some(saved) = &call.saved {
             engine.restore_saved(&saved.groups, saved.frame);
         }
+        let written: Vec<(String, Option<f64>)> = call
+            .references
+            .iter()
+            .map(|(parameter, target)| (target.clone(), engine.state.variables.variable(parameter)))
+            .collect();
         engine.state.variables.restore_locals(call.caller_locals);
+        for (target, value) in written {
+            match target
+                .strip_prefix('R')
+                .and_then(|number| number.parse::<u32>().ok())
+            {
+                Some(number) => engine.state.variables.set_r_parameter(number, value),
+                None => engine.state.variables.set_variable(&target, value),
+            }
+        }
         if call.repetitions_left > 0 {
             // The next pass runs without the parameters, which the first pass only receives
             // (reference §17.7).
@@ -218,6 +246,7 @@ impl<'a, 's> Interpreter<'a, 's> {
                 PendingCall {
                     unit: level.unit,
                     arguments: Vec::new(),
+                    targets: Vec::new(),
                     repetitions: call.repetitions_left,
                     line,
                     span: Span::default(),
@@ -232,25 +261,27 @@ impl<'a, 's> Interpreter<'a, 's> {
         let unit = Arc::clone(&self.units[unit_index]);
         let mut parser = crate::syntax::LineParser::new();
         let mut block = Block::default();
+        let empty = crate::analysis::eval::Variables::default();
         for index in 0..unit.line_count().min(64) {
             unit.parse(&mut parser, index, &mut block);
             let line = unit.line(index);
             for statement in &block.statements {
-                if let Statement::ProcedureHeader {
-                    parameters, span, ..
-                } = statement
-                {
-                    let parameters = parameters
+                if let Statement::ProcedureHeader { params, save, .. } = statement {
+                    let parameters = params
                         .iter()
-                        .map(|name| line[name.start()..name.end()].to_ascii_uppercase())
+                        .map(|parameter| {
+                            let name = line[parameter.name.start()..parameter.name.end()]
+                                .to_ascii_uppercase();
+                            let default = parameter
+                                .default
+                                .and_then(|id| evaluate(&block, line, id, &empty).ok().flatten());
+                            (name, parameter.by_reference, default)
+                        })
                         .collect();
-                    let text = line[span.start()..span.end()].to_ascii_uppercase();
-                    let attributes = text.rsplit(')').next().unwrap_or("");
-                    let save = attributes
-                        .split(|c: char| !c.is_ascii_alphanumeric() && c != '_')
-                        .skip(usize::from(!text.contains(')')) * 2)
-                        .any(|word| word == "SAVE");
-                    return ProcInfo { parameters, save };
+                    return ProcInfo {
+                        parameters,
+                        save: *save,
+                    };
                 }
             }
         }
@@ -283,6 +314,22 @@ fn evaluate_arguments(
                     .ok()
                     .flatten(),
             ),
+        })
+        .collect()
+}
+
+/// The variable each argument names, when it is a plain variable or R parameter.
+fn argument_targets(block: &Block, line: &str, args: &[Option<ExprId>]) -> Vec<Option<String>> {
+    args.iter()
+        .map(|argument| {
+            let expr = block.expr((*argument)?);
+            match &expr.kind {
+                ExprKind::Name { indexes } if indexes.is_empty() => {
+                    Some(line[expr.span.start()..expr.span.end()].to_ascii_uppercase())
+                }
+                ExprKind::RParameter(number) => Some(format!("R{number}")),
+                _ => None,
+            }
         })
         .collect()
 }

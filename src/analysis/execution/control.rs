@@ -53,6 +53,10 @@ impl<'a, 's> Interpreter<'a, 's> {
         let line = unit.line(pc);
         let statements = block.interpreted_statements();
         let mut case_value: Option<Option<f64>> = None;
+        // The CASE branch before the next jump: whether it matches (`None`: not decided), and
+        // whether an earlier branch was not decided.
+        let mut branch: Option<Option<bool>> = None;
+        let mut earlier_undecided = false;
         for (index, statement) in statements.iter().enumerate() {
             match statement {
                 Statement::Structure {
@@ -158,8 +162,7 @@ impl<'a, 's> Interpreter<'a, 's> {
                     span,
                 } => {
                     let decision = match (case_value, condition) {
-                        // The branches of CASE: which one matches is not decided statically yet.
-                        (Some(_), _) => None,
+                        (Some(_), _) => branch.take().unwrap_or(None),
                         (None, None) => Some(true),
                         (None, Some(_)) => self.decide(engine, block, line, *condition),
                     };
@@ -205,6 +208,77 @@ impl<'a, 's> Interpreter<'a, 's> {
                     }
                     self.fork(control, engine, target_line);
                 }
+                Statement::CaseBranch { value, .. } => {
+                    let matches = match (value, case_value) {
+                        // DEFAULT: taken when no branch before matched.
+                        (None, _) if earlier_undecided => None,
+                        (None, _) => Some(true),
+                        (Some(id), Some(Some(selector))) => {
+                            evaluate(block, line, *id, &engine.state.variables)
+                                .ok()
+                                .flatten()
+                                .map(|constant| real_equal(constant, selector))
+                        }
+                        (Some(_), _) => None,
+                    };
+                    earlier_undecided |= matches.is_none();
+                    branch = Some(matches);
+                }
+                Statement::SectionRepeat {
+                    start,
+                    end,
+                    count,
+                    span,
+                    ..
+                } => {
+                    let start_name = line[start.start()..start.end()].to_ascii_uppercase();
+                    let Some(&first) = unit
+                        .flow
+                        .label_lines(&start_name)
+                        .iter()
+                        .rev()
+                        .find(|labelled| **labelled < pc)
+                    else {
+                        continue;
+                    };
+                    let last = match end {
+                        Some(end) => {
+                            let end_name = line[end.start()..end.end()].to_ascii_uppercase();
+                            match unit
+                                .flow
+                                .label_lines(&end_name)
+                                .iter()
+                                .find(|labelled| **labelled >= first)
+                            {
+                                Some(&last) => last,
+                                None => continue,
+                            }
+                        }
+                        None => pc - 1,
+                    };
+                    return self.repeat_section(
+                        control, engine, block, line, pc, first, last, *count, *span,
+                    );
+                }
+                Statement::BlockRepeat {
+                    label: Some(label),
+                    count,
+                    span,
+                } => {
+                    let name = line[label.start()..label.end()].to_ascii_uppercase();
+                    let lines = unit.flow.label_lines(&name);
+                    let Some(&target) = lines
+                        .iter()
+                        .rev()
+                        .find(|labelled| **labelled < pc)
+                        .or(lines.first())
+                    else {
+                        continue;
+                    };
+                    return self.repeat_section(
+                        control, engine, block, line, pc, target, target, *count, *span,
+                    );
+                }
                 Statement::Return { .. } => {
                     return self.end_level(control, engine, ProgramEnd::Return)
                 }
@@ -217,6 +291,55 @@ impl<'a, 's> Interpreter<'a, 's> {
             }
         }
         Next::Line(pc + 1)
+    }
+
+    /// Starts the repetitions of the lines `first..=last` (reference §17.7: the section has run once
+    /// already; it runs `P` more times, once when `P` is not written) and goes on after `pc`.
+    #[allow(clippy::too_many_arguments)]
+    fn repeat_section(
+        &mut self,
+        control: &mut Control,
+        engine: &Engine<'a>,
+        block: &Block,
+        line: &str,
+        pc: usize,
+        first: usize,
+        last: usize,
+        count: Option<ExprId>,
+        span: Span,
+    ) -> Next {
+        let repetitions = match count {
+            None => Some(1.0),
+            Some(id) => evaluate(block, line, id, &engine.state.variables)
+                .ok()
+                .flatten(),
+        };
+        let Some(repetitions) = repetitions.filter(|value| *value >= 0.0 && value.fract() == 0.0)
+        else {
+            self.report(
+                control,
+                pc,
+                Code::FlowNotFollowed,
+                span,
+                "how often this section repeats is not known statically: from here on the program is read in program order".to_string(),
+            );
+            control.level_mut().pc = pc + 1;
+            return Next::LoseTrack;
+        };
+        if repetitions < 1.0 || last < first {
+            return Next::Line(pc + 1);
+        }
+        control
+            .level_mut()
+            .repeats
+            .push(crate::analysis::execution::paths::RepeatFrame {
+                start: first,
+                end: last,
+                remaining: repetitions.min(u32::MAX as f64) as u32,
+                return_to: pc + 1,
+            });
+        control.level_mut().pc = first;
+        Next::Moved
     }
 
     /// A condition the program does not determine: an information finding, once per line.

@@ -353,7 +353,29 @@ impl<'a, 's> Interpreter<'a, 's> {
             }
         };
         self.block = block;
-        next
+        match next {
+            Next::Line(next) if next == pc + 1 => Next::Line(self.after_section_line(control, pc)),
+            other => other,
+        }
+    }
+
+    /// The line after `pc` in normal flow, or the start of the next repetition of a section that
+    /// ends at `pc`, or the line after the REPEAT block once the section is done.
+    fn after_section_line(&self, control: &mut Control, pc: usize) -> usize {
+        let level = control.level_mut();
+        match level.repeats.last_mut() {
+            Some(frame) if frame.end == pc => {
+                if frame.remaining > 1 {
+                    frame.remaining -= 1;
+                    frame.start
+                } else {
+                    let return_to = frame.return_to;
+                    level.repeats.pop();
+                    return_to
+                }
+            }
+            _ => pc + 1,
+        }
     }
 
     fn record_move(

@@ -26,6 +26,16 @@ pub struct LoopFrame {
     pub fork_mark: u32,
 }
 
+/// A section repetition in progress (`REPEAT LAB1 [LAB2] P=n`, `REPEATB LAB1 P=n`): the lines it
+/// repeats, the repetitions still to start after the current one, and where the program goes on.
+#[derive(Debug, Clone, PartialEq)]
+pub struct RepeatFrame {
+    pub start: usize,
+    pub end: usize,
+    pub remaining: u32,
+    pub return_to: usize,
+}
+
 /// What a `SAVE` subprogram restores on its return (reference §8.3).
 #[derive(Debug, Clone, PartialEq)]
 pub struct SavedModal {
@@ -66,6 +76,8 @@ pub struct Activation {
     /// Per labelled line, the number of the next undecided condition when the way last ran it: the
     /// start of a pass of a loop made of a backward jump to that label.
     pub label_marks: Vec<(usize, u32)>,
+    /// Section repetitions in progress, the innermost last.
+    pub repeats: Vec<RepeatFrame>,
     /// The calls that led here, outermost first (shared by every move of the level).
     pub stack: Arc<[CallSite]>,
 }
@@ -81,6 +93,7 @@ impl Activation {
             modal_call: None,
             jump_passes: Vec::new(),
             label_marks: Vec::new(),
+            repeats: Vec::new(),
             stack: Arc::from(Vec::new()),
         }
     }
@@ -180,6 +193,7 @@ impl Control {
                     && mine.loops == theirs.loops
                     && mine.retest_for == theirs.retest_for
                     && mine.modal_call == theirs.modal_call
+                    && mine.repeats == theirs.repeats
                     && mine
                         .loops
                         .iter()
