@@ -1,7 +1,7 @@
 // How the toolpath of a long program is fetched: in line ranges, so that the first part is drawn
 // while the server still works on the rest and no single answer holds a million moves.
 
-import type { PreviewMove } from './preview';
+import { outermostLine, type PreviewMove } from './preview';
 
 /** A range of 0-based lines, `end` exclusive. */
 export interface LineRange {
@@ -33,12 +33,13 @@ export interface RangeAnswer {
   wholeProgram: boolean;
 }
 
-/** Keeps the moves of `range` (moves carry 1-based lines). */
+/** Keeps the moves of `range`: those whose line in the previewed file (the outermost call's line for
+ * a move of a called program, else the move's own; 1-based) is in it. */
 export function movesInRange(moves: PreviewMove[], range: LineRange): RangeAnswer {
   let outside = false;
   const inside: PreviewMove[] = [];
   for (const move of moves) {
-    const line = move.line - 1;
+    const line = outermostLine(move) - 1;
     if (line >= range.start && line < range.end) {
       inside.push(move);
     } else if (line < range.start - 1 || line > range.end) {

@@ -6,14 +6,24 @@ export type PlaneName = 'G17' | 'G18' | 'G19';
 
 export type ToPage =
   /** A new drawing starts (a new document, or the program changed); earlier generations are dropped. */
-  | { type: 'reset'; generation: number; title: string; units: string; plane: PlaneName | null }
+  | {
+      type: 'reset';
+      generation: number;
+      title: string;
+      units: string;
+      plane: PlaneName | null;
+      /** What the analysis assumed about the entry state (units, distance, plane); absent when nothing. */
+      assumed?: Record<string, string>;
+    }
   | { type: 'append'; generation: number; packed: PackedToolpath }
   | { type: 'done'; generation: number }
   | { type: 'error'; generation: number; message: string }
-  /** The editor's cursor is on this 1-based line. */
-  | { type: 'cursor'; line: number };
+  /** The editor's cursor is on this 1-based line of the previewed file, or of `file` (a URI of the
+   * toolpath's file table) when the cursor is in a called program. */
+  | { type: 'cursor'; line: number; file?: string };
 
 export type FromPage =
   | { type: 'ready' }
-  /** The user clicked the segment of this 1-based line. */
-  | { type: 'reveal'; line: number };
+  /** The user clicked the segment of this 1-based line of the previewed file, or of `file` (a URI of
+   * the file table) for a move of a called program. */
+  | { type: 'reveal'; line: number; file?: string };

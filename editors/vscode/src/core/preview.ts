@@ -1,6 +1,8 @@
 // The answer of the server's `sinumerik.endpointPreview` command (the same JSON as
 // `sinumerik-lsp preview`), read defensively: a malformed answer is an error with a clear message,
-// never a picture with invented numbers.
+// never a picture with invented numbers. The moves come in the order the control executes them;
+// the fields that say where a move comes from (pass, file, stack, assumed, conditional) are
+// optional, so that the answer of an older server that lists each block once reads the same.
 
 /** Axis name to value; an axis that is missing is unknown. */
 export type AxisValues = Record<string, number>;
@@ -13,8 +15,15 @@ export interface PreviewArc {
   sweep: number;
 }
 
+/** A call that led to a move: the calling block's 1-based line in `file`. */
+export interface PreviewCallSite {
+  /** The calling program's file (path or URI); null when the server left it out (the previewed file). */
+  file: string | null;
+  line: number;
+}
+
 export interface PreviewMove {
-  /** 1-based line of the block. */
+  /** 1-based line of the block in `file` (in the previewed file when `file` is null). */
   line: number;
   block: string | null;
   motion: string;
@@ -25,12 +34,24 @@ export interface PreviewMove {
   feed: number | null;
   /** Axes whose value is unknown or may not be the control's (after labels, jumps, loops). */
   uncertain: string[];
+  /** The pass (1, 2, 3, ...) of a block that runs more than once; null when it runs once. */
+  pass: number | null;
+  /** The file of the called program that made the move; null for the previewed file. */
+  file: string | null;
+  /** The calls that led to the move, outermost first; empty for the previewed file's own blocks. */
+  stack: PreviewCallSite[];
+  /** Axes whose value rests on an assumed entry state. */
+  assumed: string[];
+  /** The move is on a way whose condition the analysis could not decide. */
+  conditional: boolean;
 }
 
 export interface PreviewResult {
   file: string;
   units: string;
   moves: PreviewMove[];
+  /** What the analysis assumed about the entry state (e.g. units: "G71"); empty when nothing. */
+  assumed: Record<string, string>;
 }
 
 export class PreviewFormatError extends Error {}
@@ -76,6 +97,46 @@ function arcOf(value: unknown, where: string): PreviewArc | null {
   return { centre: axisValues(value.centre, `${where}.centre`), radius, clockwise, sweep };
 }
 
+function axisNames(value: unknown, where: string, field: string): string[] {
+  const names = value ?? [];
+  if (!Array.isArray(names) || names.some((axis) => typeof axis !== 'string')) {
+    fail(where, `${field} is not a list of axis names`);
+  }
+  return (names as string[]).map((axis) => axis.toUpperCase());
+}
+
+function isPositiveInteger(value: unknown): value is number {
+  return typeof value === 'number' && Number.isInteger(value) && value >= 1;
+}
+
+function optionalFile(value: unknown, where: string): string | null {
+  if (value === null || value === undefined) return null;
+  if (typeof value !== 'string') fail(where, 'file is not a string');
+  return value;
+}
+
+function stackOf(value: unknown, where: string): PreviewCallSite[] {
+  if (value === null || value === undefined) return [];
+  if (!Array.isArray(value)) fail(where, 'stack is not a list of call sites');
+  return value.map((site, depth) => {
+    const at = `${where}.stack[${depth}]`;
+    if (!isObject(site)) fail(at, 'expected an object with file and line');
+    if (!isPositiveInteger(site.line)) fail(at, 'line is not a positive integer');
+    return { file: optionalFile(site.file, at), line: site.line };
+  });
+}
+
+function entryState(value: unknown): Record<string, string> {
+  if (value === null || value === undefined) return {};
+  if (!isObject(value)) fail('answer', 'assumed is not an object');
+  const out: Record<string, string> = {};
+  for (const [name, setting] of Object.entries(value)) {
+    if (typeof setting !== 'string') fail('answer', `assumed ${name} is not a string`);
+    out[name] = setting;
+  }
+  return out;
+}
+
 function moveOf(value: unknown, index: number): PreviewMove {
   const where = `moves[${index}]`;
   if (!isObject(value)) fail(where, 'expected an object');
@@ -85,10 +146,10 @@ function moveOf(value: unknown, index: number): PreviewMove {
   if (typeof motion !== 'string') fail(where, 'motion is not a string');
   const block = typeof value.block === 'string' ? value.block : null;
   const feed = typeof value.feed === 'number' && Number.isFinite(value.feed) ? value.feed : null;
-  const uncertainRaw = value.uncertain ?? [];
-  if (!Array.isArray(uncertainRaw) || uncertainRaw.some((axis) => typeof axis !== 'string')) {
-    fail(where, 'uncertain is not a list of axis names');
-  }
+  const pass = value.pass ?? null;
+  if (pass !== null && !isPositiveInteger(pass)) fail(where, 'pass is not a positive integer');
+  const conditional = value.conditional ?? false;
+  if (typeof conditional !== 'boolean') fail(where, 'conditional is not true or false');
   return {
     line,
     block,
@@ -98,7 +159,12 @@ function moveOf(value: unknown, index: number): PreviewMove {
     mcs: value.mcs === null || value.mcs === undefined ? null : axisValues(value.mcs, `${where}.mcs`),
     arc: arcOf(value.arc, `${where}.arc`),
     feed,
-    uncertain: (uncertainRaw as string[]).map((axis) => axis.toUpperCase()),
+    uncertain: axisNames(value.uncertain, where, 'uncertain'),
+    pass,
+    file: optionalFile(value.file, where),
+    stack: stackOf(value.stack, where),
+    assumed: axisNames(value.assumed, where, 'assumed'),
+    conditional,
   };
 }
 
@@ -111,5 +177,11 @@ export function parsePreview(value: unknown): PreviewResult {
     file: typeof value.file === 'string' ? value.file : '',
     units: typeof value.units === 'string' ? value.units : 'mm',
     moves,
+    assumed: entryState(value.assumed),
   };
+}
+
+/** The line of the previewed file that causes a move: the outermost call's, or the move's own. */
+export function outermostLine(move: Pick<PreviewMove, 'line' | 'stack'>): number {
+  return move.stack.length ? move.stack[0].line : move.line;
 }

@@ -1,9 +1,12 @@
 // The "SINUMERIK: Show Toolpath" webview beside the editor: it shows the active program, follows its
-// edits and the cursor, and reveals the line of a clicked segment.
+// edits and the cursor, and reveals the line of a clicked segment. The toolpath runs through the
+// programs the shown one calls: their editors stay linked to it (their cursor highlights their
+// moves, a click on one of their moves opens them) instead of becoming the program shown.
 
 import * as crypto from 'node:crypto';
 import * as path from 'node:path';
 import * as vscode from 'vscode';
+import { fileUri } from '../core/files';
 import { ToolpathLoader, PREVIEW_COMMAND } from '../core/loader';
 import type { FromPage, PlaneName, ToPage } from '../core/messages';
 import { MODAL_STATE_REQUEST, parseModalState } from '../core/modalState';
@@ -56,22 +59,26 @@ export class ToolpathPanel implements vscode.Disposable {
         return client.sendRequest('workspace/executeCommand', { command: PREVIEW_COMMAND, arguments: args });
       },
       post: (message) => this.post(message),
+      // The server may spell a URI differently from VS Code (an encoded drive colon): VS Code's own
+      // spelling is the one editors and the page compare.
+      fileKey: (name, base) => vscode.Uri.parse(fileUri(name, base)).toString(),
     });
     this.subscriptions.push(
       webview.onDidReceiveMessage((message: FromPage) => this.receive(message)),
       this.panel.onDidDispose(() => this.dispose()),
       vscode.window.onDidChangeActiveTextEditor((editor) => {
-        if (editor && editor.document.languageId === LANGUAGE_ID) this.follow(editor.document);
+        if (!editor || editor.document.languageId !== LANGUAGE_ID) return;
+        // A called program opened from the picture (or by hand) stays linked to the program shown.
+        if (this.loader.isCalledFile(editor.document.uri.toString())) this.postCursor(editor.document, editor.selection.active.line);
+        else this.follow(editor.document);
       }),
       vscode.workspace.onDidChangeTextDocument((event) => {
-        if (event.document !== this.document || !this.followEdits()) return;
+        if (!this.followEdits() || !this.shows(event.document)) return;
         if (this.editTimer) clearTimeout(this.editTimer);
         this.editTimer = setTimeout(() => void this.reload(), EDIT_DELAY_MS);
       }),
       vscode.window.onDidChangeTextEditorSelection((event) => {
-        if (event.textEditor.document === this.document) {
-          this.post({ type: 'cursor', line: event.selections[0].active.line + 1 });
-        }
+        this.postCursor(event.textEditor.document, event.selections[0].active.line);
       }),
       server.onDidChangeClient((client) => {
         if (client) void this.reload();
@@ -88,6 +95,17 @@ export class ToolpathPanel implements vscode.Disposable {
     this.document = document;
     this.panel.title = `Toolpath: ${path.basename(document.fileName)}`;
     void this.reload();
+  }
+
+  /** Whether the toolpath runs through this document: the program shown or one it calls. */
+  private shows(document: vscode.TextDocument): boolean {
+    return document === this.document || this.loader.isCalledFile(document.uri.toString());
+  }
+
+  /** Tells the page the cursor's 0-based line in the program shown or in a program it calls. */
+  private postCursor(document: vscode.TextDocument, line: number): void {
+    if (document === this.document) this.post({ type: 'cursor', line: line + 1 });
+    else if (this.loader.isCalledFile(document.uri.toString())) this.post({ type: 'cursor', line: line + 1, file: document.uri.toString() });
   }
 
   private post(message: ToPage): void {
@@ -119,8 +137,12 @@ export class ToolpathPanel implements vscode.Disposable {
       lineCount: document.lineCount,
       plane: await this.planeAtCursor(document),
     });
-    const editor = vscode.window.visibleTextEditors.find((candidate) => candidate.document === document);
-    if (editor) this.post({ type: 'cursor', line: editor.selection.active.line + 1 });
+    // The cursor of the active editor when it is in the toolpath (a called program after its edit),
+    // else the cursor of the program shown.
+    const active = vscode.window.activeTextEditor;
+    const editor =
+      active && this.shows(active.document) ? active : vscode.window.visibleTextEditors.find((candidate) => candidate.document === document);
+    if (editor) this.postCursor(editor.document, editor.selection.active.line);
   }
 
   private receive(message: FromPage): void {
@@ -128,16 +150,35 @@ export class ToolpathPanel implements vscode.Disposable {
       this.ready = true;
       void this.reload();
     } else if (message.type === 'reveal' && this.document) {
-      const line = Math.max(0, Math.min(message.line - 1, this.document.lineCount - 1));
-      const range = this.document.lineAt(line).range;
-      const visible = vscode.window.visibleTextEditors.find((editor) => editor.document === this.document);
-      void vscode.window
-        .showTextDocument(this.document, { viewColumn: visible?.viewColumn ?? vscode.ViewColumn.One, preserveFocus: false })
-        .then((editor) => {
-          editor.selection = new vscode.Selection(range.start, range.end);
-          editor.revealRange(range, vscode.TextEditorRevealType.InCenterIfOutsideViewport);
-        });
+      void this.reveal(this.document, message.line, message.file);
     }
+  }
+
+  /** Selects a 1-based line of the program shown, or of `file` (a called program's URI), which is
+   * opened when it is not yet. */
+  private async reveal(shown: vscode.TextDocument, line: number, file: string | undefined): Promise<void> {
+    let document = shown;
+    if (file && file !== shown.uri.toString()) {
+      try {
+        document = await vscode.workspace.openTextDocument(vscode.Uri.parse(file));
+      } catch (error) {
+        const reason = error instanceof Error ? error.message : String(error);
+        void vscode.window.showErrorMessage(`The toolpath's file ${file} could not be opened: ${reason}`);
+        return;
+      }
+    }
+    const index = Math.max(0, Math.min(line - 1, document.lineCount - 1));
+    const range = document.lineAt(index).range;
+    // The column of an editor that shows the file already, else the one of the program shown.
+    const visible =
+      vscode.window.visibleTextEditors.find((editor) => editor.document.uri.toString() === document.uri.toString()) ??
+      vscode.window.visibleTextEditors.find((editor) => editor.document === shown);
+    const editor = await vscode.window.showTextDocument(document, {
+      viewColumn: visible?.viewColumn ?? vscode.ViewColumn.One,
+      preserveFocus: false,
+    });
+    editor.selection = new vscode.Selection(range.start, range.end);
+    editor.revealRange(range, vscode.TextEditorRevealType.InCenterIfOutsideViewport);
   }
 
   private disposed = false;

@@ -1,8 +1,9 @@
 // The toolpath in the working plane: projection of the packed moves onto two axes, the view
-// transform (pan and zoom), picking a segment under the pointer and finding a line's segments.
+// transform (pan and zoom) and picking a segment under the pointer (selection.ts finds the segments
+// a line causes).
 // Plain functions on typed arrays, so that they run in the webview and in unit tests under Node.
 
-import { FLAG_CLOCKWISE, FLAG_RAPID, FLAG_UNCERTAIN_X, type PackedToolpath } from '../core/packed';
+import { FLAG_CLOCKWISE, FLAG_CONDITIONAL, FLAG_RAPID, FLAG_UNCERTAIN_X, type PackedToolpath } from '../core/packed';
 
 export type Plane = 'G17' | 'G18' | 'G19';
 
@@ -20,6 +21,8 @@ export const KIND_UNCERTAIN = 2;
 export const KIND_ARC = 4;
 /** An arc whose numbers do not fit a circle in this plane: drawn as a straight line, marked. */
 export const KIND_ARC_UNVERIFIED = 8;
+/** A move on a way whose condition the analysis could not decide. */
+export const KIND_CONDITIONAL = 16;
 
 /** Segments per bounding box used to skip what is off screen. */
 export const CHUNK = 256;
@@ -29,7 +32,7 @@ export interface Projected {
   count: number;
   /** The packed move each segment draws. */
   moveIndex: Uint32Array;
-  /** 1-based line of each segment, ascending. */
+  /** 1-based line of each segment in its move's file, in the order the control runs them. */
   line: Uint32Array;
   kind: Uint8Array;
   x0: Float64Array;
@@ -50,6 +53,8 @@ export interface Projected {
   bounds: Bounds | null;
   /** Moves that cannot be drawn in this plane because a coordinate is unknown. */
   hidden: number;
+  /** Segments drawn for conditional moves. */
+  conditional: number;
 }
 
 export interface Bounds {
@@ -116,6 +121,7 @@ export function project(packed: PackedToolpath, plane: Plane): Projected {
   const sweep = new Float64Array(n);
   let count = 0;
   let hidden = 0;
+  let conditional = 0;
   for (let i = 0; i < n; i++) {
     const sh = packed.start[i * 3 + h];
     const sv = packed.start[i * 3 + v];
@@ -128,6 +134,10 @@ export function project(packed: PackedToolpath, plane: Plane): Projected {
     const flags = packed.flags[i];
     let k = flags & FLAG_RAPID ? KIND_RAPID : 0;
     if (flags & ((FLAG_UNCERTAIN_X << h) | (FLAG_UNCERTAIN_X << v))) k |= KIND_UNCERTAIN;
+    if (flags & FLAG_CONDITIONAL) {
+      k |= KIND_CONDITIONAL;
+      conditional++;
+    }
     const arc = packed.arcOf[i];
     if (arc >= 0) {
       const ch = packed.arcCentre[arc * 3 + h];
@@ -188,7 +198,7 @@ export function project(packed: PackedToolpath, plane: Plane): Projected {
       : { minX, minY, maxX, maxY };
   }
   return {
-    plane, count, moveIndex, line, kind, x0, y0, x1, y1, cx, cy, rx, ry, a0, sweep, chunkBox, bounds, hidden,
+    plane, count, moveIndex, line, kind, x0, y0, x1, y1, cx, cy, rx, ry, a0, sweep, chunkBox, bounds, hidden, conditional,
   };
 }
 
@@ -293,18 +303,4 @@ export function pick(p: Projected, view: View, sx: number, sy: number, tolerance
     }
   }
   return best;
-}
-
-/** The segments drawn for a 1-based line: [first, end), empty when the line does not move in this plane. */
-export function segmentsOfLine(p: Projected, line: number): [number, number] {
-  let low = 0;
-  let high = p.count;
-  while (low < high) {
-    const mid = (low + high) >>> 1;
-    if (p.line[mid] < line) low = mid + 1;
-    else high = mid;
-  }
-  let end = low;
-  while (end < p.count && p.line[end] === line) end++;
-  return [low, end];
 }

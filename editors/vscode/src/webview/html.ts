@@ -44,6 +44,8 @@ export function toolpathHtml(options: PageOptions): string {
   .swatch.uncertain { border-top: 2px dotted #d7a600; } .swatch.cursor { border-top: 3px solid #ffd500; }
   body.vscode-light .swatch.feed { border-top-color: #0b5cad; } body.vscode-light .swatch.rapid { border-top-color: #c62828; }
   body.vscode-light .swatch.uncertain { border-top-color: #9a6b00; } body.vscode-light .swatch.cursor { border-top-color: #e07000; }
+  .swatch.conditional { border-top: 2px solid #3b8eea; opacity: 0.5; }
+  body.vscode-light .swatch.conditional { border-top-color: #0b5cad; }
   #canvas-box { position: relative; flex: 1; min-height: 0; }
   canvas { position: absolute; inset: 0; width: 100%; height: 100%; cursor: crosshair; }
   #status { flex: none; padding: 2px 8px; border-top: 1px solid var(--vscode-panel-border, #444); white-space: nowrap;
@@ -61,7 +63,8 @@ export function toolpathHtml(options: PageOptions): string {
   <span class="legend"><span class="swatch feed"></span>feed</span>
   <span class="legend"><span class="swatch rapid"></span>rapid</span>
   <span class="legend" title="after a label, jump or loop the control may take another path"><span class="swatch uncertain"></span>uncertain</span>
-  <span class="legend"><span class="swatch cursor"></span>cursor</span>
+  <span class="legend" title="faded: on a way whose condition the analysis could not decide"><span class="swatch conditional"></span>conditional</span>
+  <span class="legend" title="every move of the cursor's line: each pass, and for a call every move of the called program"><span class="swatch cursor"></span>cursor</span>
 </div>
 <div id="canvas-box"><canvas id="canvas"></canvas><div id="tip"></div></div>
 <div id="status">Waiting for the language server…</div>

@@ -1,13 +1,16 @@
 // The toolpath page's glue: messages from the extension, pointer and keyboard input, and redraws on
-// the next animation frame. The drawing itself is in render.ts and the geometry in geometry.ts.
+// the next animation frame. The drawing itself is in render.ts, the geometry in geometry.ts, the
+// moves a line causes in selection.ts and the words for a move in describe.ts.
 
+import { fileLabel } from '../core/files';
 import type { FromPage, ToPage } from '../core/messages';
 import { AXES, concatPacked, emptyPacked, FLAG_UNCERTAIN_X, MOTIONS, revivePacked, type PackedToolpath } from '../core/packed';
+import { assumedEntryState, callPath, moveNotes, moveOrigin } from './describe';
 import {
-  fitView, guessPlane, KIND_UNCERTAIN, panBy, pick, PLANE_NAMES, project, revealPoint, segmentsOfLine, zoomAt,
-  type Plane, type View,
+  fitView, guessPlane, KIND_UNCERTAIN, panBy, pick, PLANE_NAMES, project, revealPoint, zoomAt, type Plane, type Projected, type View,
 } from './geometry';
 import { LIGHT_STYLES, render, STYLES, type RenderStats } from './render';
+import { fileIndexOf, passesOf, segmentsCausedBy } from './selection';
 
 interface VsCodeApi {
   postMessage(message: FromPage): void;
@@ -33,7 +36,13 @@ const state = {
   view: null as View | null,
   /** The user panned or zoomed: new data no longer refits the view. */
   userMoved: false,
+  /** The editor's cursor line (1-based; 0: none) and its file's URI (undefined: the previewed file). */
   cursorLine: 0,
+  cursorFile: undefined as string | undefined,
+  /** The move the user clicked, while the cursor is on its line; -1 otherwise. */
+  picked: -1,
+  /** The entry state the analysis assumed (units, distance, plane). */
+  assumed: {} as Record<string, string>,
   done: false,
   /** Parts are drawn as they arrive (a new program), or collected in `incoming` (an edit). */
   progressive: true,
@@ -49,8 +58,36 @@ const state = {
   height: 0,
 };
 
+/** The highlighted segments of the cursor's line, computed again only when the line or the drawing changes. */
+const highlighted = { projected: null as Projected | null, file: undefined as string | undefined, line: 0, segments: new Uint32Array(0) };
+
+function highlight(): Uint32Array {
+  const { projected, cursorFile, cursorLine } = state;
+  if (highlighted.projected !== projected || highlighted.file !== cursorFile || highlighted.line !== cursorLine) {
+    const file = fileIndexOf(state.packed, cursorFile);
+    highlighted.segments = cursorLine ? segmentsCausedBy(projected, state.packed, file, cursorLine) : new Uint32Array(0);
+    Object.assign(highlighted, { projected, file: cursorFile, line: cursorLine });
+  }
+  return highlighted.segments;
+}
+
+/** How often a move's block runs, remembered per file and line until the toolpath changes. */
+const passCounts = { packed: null as PackedToolpath | null, counts: new Map<number, number>() };
+
+function passes(move: number): number {
+  const packed = state.packed;
+  if (!packed.pass[move]) return 0;
+  if (passCounts.packed !== packed) Object.assign(passCounts, { packed, counts: new Map() });
+  const key = packed.file[move] * 2 ** 32 + packed.line[move];
+  let count = passCounts.counts.get(key);
+  if (count === undefined) passCounts.counts.set(key, (count = passesOf(packed, move)));
+  return count;
+}
+
 // For the browser test: the state and the functions it needs to find segments on screen.
-(window as unknown as { toolpathDebug: unknown }).toolpathDebug = { state, segmentsOfLine, redrawNow: () => draw() };
+(window as unknown as { toolpathDebug: unknown }).toolpathDebug = {
+  state, highlight, segmentsCausedBy, fileIndexOf, redrawNow: () => draw(),
+};
 
 function chosenPlane(): Plane {
   const choice = planeSelect.value;
@@ -92,15 +129,24 @@ function draw(): void {
   const background = getComputedStyle(document.body).backgroundColor || '#1e1e1e';
   const view = state.view ?? fitView(state.projected.bounds, state.width, state.height);
   const started = performance.now();
-  const highlight = state.cursorLine ? segmentsOfLine(state.projected, state.cursorLine) : ([0, 0] as [number, number]);
+  const segments = highlight();
   // VS Code marks the webview's body with the kind of theme.
   const light = document.body.classList.contains('vscode-light') || document.body.classList.contains('vscode-high-contrast-light');
-  state.stats = render(context, () => new Path2D(), state.projected, view, state.width, state.height, background, highlight, light ? LIGHT_STYLES : STYLES);
+  state.stats = render(context, () => new Path2D(), state.projected, view, state.width, state.height, background, segments, light ? LIGHT_STYLES : STYLES);
   state.renderMs = performance.now() - started;
-  updateStatus(highlight);
+  updateStatus(segments);
 }
 
-function updateStatus(highlight: [number, number]): void {
+/** The status line's words for the cursor: the clicked move, or the line and how many moves it causes. */
+function cursorStatus(segments: Uint32Array): string {
+  if (state.picked >= 0 && state.picked < state.packed.count) return moveOrigin(state.packed, state.picked, passes(state.picked));
+  const where = state.cursorFile ? `${fileLabel(state.cursorFile)} line ${state.cursorLine}` : `line ${state.cursorLine}`;
+  if (fileIndexOf(state.packed, state.cursorFile) < 0) return `${where}: not part of this toolpath`;
+  if (segments.length === 0) return `${where}: no move in this plane`;
+  return segments.length === 1 ? where : `${where}: ${segments.length.toLocaleString('en')} moves`;
+}
+
+function updateStatus(segments: Uint32Array): void {
   if (state.error) {
     statusLine.textContent = state.error;
     return;
@@ -115,9 +161,10 @@ function updateStatus(highlight: [number, number]): void {
   if (p.hidden) parts.push(`${p.hidden.toLocaleString('en')} not drawn (position unknown in this plane)`);
   if (state.stats?.thinned) parts.push(`${state.stats.thinned.toLocaleString('en')} thinned at this zoom`);
   if (state.stats?.arcsUnverified) parts.push(`${state.stats.arcsUnverified} arcs drawn straight (centre does not fit)`);
-  if (state.cursorLine) {
-    parts.push(highlight[1] > highlight[0] ? `line ${state.cursorLine}` : `line ${state.cursorLine}: no move in this plane`);
-  }
+  if (p.conditional) parts.push(`${p.conditional.toLocaleString('en')} conditional (faded)`);
+  const assumed = assumedEntryState(state.assumed);
+  if (assumed) parts.push(assumed);
+  if (state.cursorLine) parts.push(cursorStatus(segments));
   statusLine.textContent = parts.join(' · ');
 }
 
@@ -135,8 +182,12 @@ function describe(segment: number): string {
     .filter((text) => text !== '')
     .join(' ');
   const feed = Number.isNaN(packed.feed[move]) ? '' : ` F${packed.feed[move]}`;
-  const uncertain = p.kind[segment] & KIND_UNCERTAIN ? '\nuncertain: the control may take another path here' : '';
-  return `line ${p.line[segment]}  ${MOTIONS[packed.motion[move]]}  → ${end}${feed}${uncertain}`;
+  const lines = [`${moveOrigin(packed, move, passes(move))}  ${MOTIONS[packed.motion[move]]}  → ${end}${feed}`];
+  const calls = callPath(packed, move);
+  if (calls) lines.push(calls);
+  lines.push(...moveNotes(packed, move));
+  if (p.kind[segment] & KIND_UNCERTAIN) lines.push('uncertain: the control may take another path here');
+  return lines.join('\n');
 }
 
 window.addEventListener('message', (event: MessageEvent<ToPage>) => {
@@ -152,8 +203,10 @@ window.addEventListener('message', (event: MessageEvent<ToPage>) => {
         state.userMoved = false;
       }
       state.generation = message.generation;
+      state.picked = -1;
       state.title = message.title;
       state.units = message.units;
+      state.assumed = message.assumed ?? {};
       state.serverPlane = message.plane;
       state.incoming = [];
       state.arrived = 0;
@@ -191,11 +244,15 @@ window.addEventListener('message', (event: MessageEvent<ToPage>) => {
       state.error = message.message;
       break;
     case 'cursor': {
+      // The cursor arriving on the line of the clicked move keeps that move in the status line.
+      if (message.line !== state.cursorLine || message.file !== state.cursorFile) state.picked = -1;
       state.cursorLine = message.line;
-      const [first, end] = segmentsOfLine(state.projected, message.line);
-      if (end > first && state.view) {
+      state.cursorFile = message.file;
+      const segments = highlight();
+      if (segments.length && state.view) {
         const p = state.projected;
-        state.view = revealPoint(state.view, p.x1[end - 1], p.y1[end - 1], state.width, state.height);
+        const last = segments[segments.length - 1];
+        state.view = revealPoint(state.view, p.x1[last], p.y1[last], state.width, state.height);
       }
       break;
     }
@@ -251,8 +308,12 @@ canvas.addEventListener('pointerup', (event) => {
   if (wasDrag || !state.view) return;
   const segment = pick(state.projected, state.view, event.offsetX, event.offsetY);
   if (segment >= 0) {
-    state.cursorLine = state.projected.line[segment];
-    vscode.postMessage({ type: 'reveal', line: state.projected.line[segment] });
+    const move = state.projected.moveIndex[segment];
+    const file = state.packed.file[move];
+    state.picked = move;
+    state.cursorLine = state.packed.line[move];
+    state.cursorFile = file ? state.packed.files[file] : undefined;
+    vscode.postMessage(file ? { type: 'reveal', line: state.cursorLine, file: state.cursorFile } : { type: 'reveal', line: state.cursorLine });
     scheduleDraw();
   }
 });

@@ -1,9 +1,12 @@
 // Drawing the projected toolpath on a 2D canvas: only chunks that touch the screen are visited, and
 // segments shorter than a pixel are joined into one line (thinned), so that a program of a million
 // moves draws in a few tens of milliseconds. The canvas is an interface so that unit tests can record
-// what would be drawn.
+// what would be drawn. Moves on a way whose condition the analysis could not decide are drawn in their
+// kind's style, faded.
 
-import { CHUNK, KIND_ARC, KIND_ARC_UNVERIFIED, KIND_RAPID, KIND_UNCERTAIN, toScreen, type Projected, type View } from './geometry';
+import {
+  CHUNK, KIND_ARC, KIND_ARC_UNVERIFIED, KIND_CONDITIONAL, KIND_RAPID, KIND_UNCERTAIN, toScreen, type Projected, type View,
+} from './geometry';
 
 /** The part of CanvasRenderingContext2D / Path2D used here. */
 export interface PathLike {
@@ -54,6 +57,17 @@ export function styleOf(kind: number): StyleName {
   if (kind & KIND_UNCERTAIN) return kind & KIND_RAPID ? 'uncertainRapid' : 'uncertainFeed';
   return kind & KIND_RAPID ? 'rapid' : 'feed';
 }
+
+/** The opacity of conditional moves, as the two hex digits appended to a `#rrggbb` colour. */
+export const CONDITIONAL_ALPHA = '80';
+
+/** A style's colour faded for conditional moves. */
+export function fadedColour(colour: string): string {
+  return /^#[0-9a-fA-F]{6}$/.test(colour) ? colour + CONDITIONAL_ALPHA : colour;
+}
+
+/** End-point squares are drawn on at most this many highlighted segments (else on the last only). */
+export const MAX_MARKERS = 64;
 
 export interface RenderStats {
   /** Segments visited (in chunks that touch the screen). */
@@ -110,22 +124,19 @@ export function render(
   width: number,
   height: number,
   background: string,
-  highlight: [number, number] = [0, 0],
+  highlight: ArrayLike<number> = [],
   palette: Palette = STYLES,
 ): RenderStats {
   ctx.clearRect(0, 0, width, height);
   ctx.fillStyle = background;
   ctx.fillRect(0, 0, width, height);
   const stats: RenderStats = { visited: 0, drawn: 0, thinned: 0, culledChunks: 0, arcsUnverified: 0 };
-  const pens = new Map<StyleName, Pen>();
-  const penFor = (style: StyleName) => {
-    let pen = pens.get(style);
-    if (!pen) {
-      pen = new Pen(newPath());
-      pens.set(style, pen);
-    }
-    return pen;
-  };
+  // One pen per style and per faded or not: index 2 * style + (conditional ? 1 : 0), looked up by kind.
+  const names = Object.keys(palette) as StyleName[];
+  const penOfKind = new Uint8Array(KIND_CONDITIONAL * 2);
+  penOfKind.forEach((_, kind) => (penOfKind[kind] = 2 * names.indexOf(styleOf(kind)) + (kind & KIND_CONDITIONAL ? 1 : 0)));
+  const pens: (Pen | undefined)[] = [];
+  const penFor = (kind: number) => (pens[penOfKind[kind]] ??= new Pen(newPath()));
   // The visible world rectangle, a little larger so that thick lines at the edge are drawn.
   const pad = 4 / view.scale;
   const left = -view.offsetX / view.scale - pad;
@@ -142,30 +153,34 @@ export function render(
     for (let s = c * CHUNK; s < Math.min(p.count, (c + 1) * CHUNK); s++) {
       stats.visited++;
       if (p.kind[s] & KIND_ARC_UNVERIFIED) stats.arcsUnverified++;
-      if (addSegment(p, view, s, penFor(styleOf(p.kind[s])))) stats.drawn++;
+      if (addSegment(p, view, s, penFor(p.kind[s]))) stats.drawn++;
       else stats.thinned++;
     }
   }
-  for (const [name, pen] of pens) {
-    const style = palette[name];
-    ctx.strokeStyle = style.colour;
+  pens.forEach((pen, index) => {
+    if (!pen) return;
+    const style = palette[names[index >> 1]];
+    ctx.strokeStyle = index & 1 ? fadedColour(style.colour) : style.colour;
     ctx.lineWidth = style.width;
     ctx.setLineDash(style.dash);
     ctx.stroke(pen.path);
-  }
-  const [first, end] = highlight;
-  if (end > first) {
+  });
+  if (highlight.length > 0) {
     const pen = new Pen(newPath());
-    for (let s = first; s < end; s++) addSegment(p, view, s, pen);
+    for (let i = 0; i < highlight.length; i++) addSegment(p, view, highlight[i], pen);
     const style = palette.highlight;
     ctx.strokeStyle = style.colour;
     ctx.lineWidth = style.width;
     ctx.setLineDash(style.dash);
     ctx.stroke(pen.path);
-    // A square on the block's end point, so that a move shorter than a pixel is still seen.
-    const [ex, ey] = toScreen(view, p.x1[end - 1], p.y1[end - 1]);
+    // A square on each end point, so that a move shorter than a pixel is still seen; on the last
+    // one only when there are many.
     ctx.fillStyle = style.colour;
-    ctx.fillRect(ex - 3, ey - 3, 6, 6);
+    const first = highlight.length > MAX_MARKERS ? highlight.length - 1 : 0;
+    for (let i = first; i < highlight.length; i++) {
+      const [ex, ey] = toScreen(view, p.x1[highlight[i]], p.y1[highlight[i]]);
+      ctx.fillRect(ex - 3, ey - 3, 6, 6);
+    }
   }
   return stats;
 }

@@ -18,17 +18,20 @@ let generation = 1000;
 
 const harness = {
   sent,
-  /** Loads a preview answer (the JSON of `sinumerik-lsp preview`) in ranges of `chunkLines`. */
+  /** Loads a preview answer (the JSON of `sinumerik-lsp preview`) in ranges of `chunkLines`, as the
+   * program `file:///work/<title>`. */
   async loadPreview(answer: unknown, title: string, lineCount: number, plane: PlaneName | null, chunkLines = 4, delayMs = 0) {
-    // Answers like a server with an inclusive end line, so that the page is fed in several parts.
-    const whole = answer as { moves: { line: number }[] };
+    // Answers like a server with an inclusive end line, so that the page is fed in several parts: the
+    // moves whose line in the previewed file (the outermost call's, else their own) is in the range.
+    const whole = answer as { moves: { line: number; stack?: { line: number }[] }[] };
     const executePreview = async (args: unknown[]) => {
       const { startLine, endLine } = args[0] as { startLine: number; endLine: number };
       if (delayMs) await new Promise((resolve) => setTimeout(resolve, delayMs));
-      return { ...whole, moves: whole.moves.filter((move) => move.line - 1 >= startLine && move.line - 1 <= endLine) };
+      const outermost = (move: (typeof whole.moves)[number]) => (move.stack?.length ? move.stack[0].line : move.line) - 1;
+      return { ...whole, moves: whole.moves.filter((move) => outermost(move) >= startLine && outermost(move) <= endLine) };
     };
     const loader = new ToolpathLoader({ executePreview, post, chunkLines });
-    await loader.load({ uri: 'file:///demo.mpf', title, lineCount, plane });
+    await loader.load({ uri: `file:///work/${title}`, title, lineCount, plane });
   },
   /** A synthetic program of `count` short feed moves on a spiral with a rapid every 1000 moves,
    * packed directly: the page's cost at a million lines, without a million JSON objects in the test. */
@@ -42,6 +45,7 @@ const harness = {
       const nx = radius * Math.cos(angle);
       const ny = radius * Math.sin(angle);
       p.line[i] = i + 2;
+      p.outerLine[i] = i + 2;
       const rapid = i % 1000 === 0;
       p.motion[i] = rapid ? 0 : 1;
       p.flags[i] = rapid ? FLAG_RAPID : 0;
@@ -56,8 +60,9 @@ const harness = {
     post({ type: 'append', generation: g, packed: p });
     post({ type: 'done', generation: g });
   },
-  setCursor(line: number) {
-    post({ type: 'cursor', line });
+  /** The editor's cursor on a line of the previewed file, or of `file` (a URI). */
+  setCursor(line: number, file?: string) {
+    post(file ? { type: 'cursor', line, file } : { type: 'cursor', line });
   },
 };
 (window as unknown as Record<string, unknown>).harness = harness;

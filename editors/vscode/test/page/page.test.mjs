@@ -1,6 +1,7 @@
 // The toolpath page in headless Chromium: it draws the demo program (feed solid, rapid dashed, arcs,
 // uncertain moves), highlights the cursor's line, reveals a clicked line, pans and zooms, matches
-// the committed screenshot's outline, and prints its drawing time for a million moves.
+// the committed screenshot's outline, draws the moves of called programs and highlights the moves a
+// call line causes, fades conditional moves, and prints its drawing time for a million moves.
 // Set UPDATE_SCREENSHOT=1 to rewrite the baseline and docs/toolpath-preview.png.
 import assert from 'node:assert/strict';
 import * as fs from 'node:fs';
@@ -143,7 +144,7 @@ test('the cursor line is highlighted, and a click on a segment reveals its line'
   const [ox, oy] = await canvasOrigin();
   const [cx, cy] = await screen(35, 50); // N100 G1 X10 along Y50, line 11
   await page.hover(ox + cx, oy + cy + 2);
-  assert.match(await page.evaluate('document.getElementById("tip").textContent'), /^line 11 {2}G1 {2}→ X10 Y50 Z-2 F500/);
+  assert.match(await page.evaluate('document.getElementById("tip").textContent'), /^N100, line 11 {2}G1 {2}→ X10 Y50 Z-2 F500$/);
   await page.mouse('mousePressed', ox + cx, oy + cy + 2);
   await page.mouse('mouseReleased', ox + cx, oy + cy + 2);
   await until('harness.sent.some((m) => m.type === "reveal")', 'a reveal message');
@@ -242,6 +243,80 @@ test('after an edit the old drawing stays until the new one is complete', async 
   assert.equal(await page.evaluate('toolpathDebug.state.packed.count'), 20);
   const [ux, uy] = await screen(42.5, 25);
   assert.ok(!(await hasColour(ux, uy, UNCERTAIN, 3)), 'the removed uncertain move is gone');
+});
+
+const SLOT_URI = 'file:///work/SLOT.SPF';
+
+test('the moves of a called program are drawn, and a call line highlights every move it causes', async () => {
+  const calls = fs.readFileSync(path.join(root, 'test', 'fixtures', 'calls_mill.preview.json'), 'utf8');
+  await page.evaluate('harness.setCursor(1)'); // a line without moves: nothing highlighted
+  await page.evaluate(`harness.loadPreview(${calls}, 'calls_mill.mpf', 19, null, 4)`);
+  await until('toolpathDebug.state.done && toolpathDebug.state.title === "calls_mill.mpf"', 'the drawing of calls_mill.mpf');
+  await page.evaluate('toolpathDebug.redrawNow()');
+  const loaded = await page.evaluate('({ count: toolpathDebug.state.packed.count, files: toolpathDebug.state.packed.files })');
+  assert.equal(loaded.count, 23, 'the moves of the program and the three runs of SLOT.SPF, through several ranges');
+  assert.deepEqual(loaded.files, ['file:///work/calls_mill.mpf', SLOT_URI]);
+  // The cut of SLOT.SPF line 4 in its first run (X10 to X30 at Y10) and in its third (X30 to X50 at Y30).
+  for (const [x, y] of [[15, 10], [20, 10], [25, 10], [35, 30], [40, 30], [45, 30]]) {
+    const [sx, sy] = await screen(x, y);
+    assert.ok(await hasColour(sx, sy, FEED), `the slot is drawn at X${x} Y${y}`);
+  }
+
+  // The cursor on line 8, N70 SLOT P2: both runs of that call, and not the run of N50 on line 6.
+  await page.evaluate('harness.setCursor(8)');
+  await until('toolpathDebug.state.cursorLine === 8', 'the cursor message');
+  await page.evaluate('toolpathDebug.redrawNow()');
+  assert.equal(await page.evaluate('toolpathDebug.highlight().length'), 6);
+  for (const x of [20, 40]) {
+    const [sx, sy] = await screen(x, 30);
+    assert.ok(await hasColour(sx, sy, HIGHLIGHT), `the call's cut at X${x} Y30 is highlighted`);
+  }
+  const [ox1, oy1] = await screen(20, 10);
+  assert.ok(!(await hasColour(ox1, oy1, HIGHLIGHT, 1)), 'the run of the other call is not');
+  assert.match(await page.evaluate('document.getElementById("status").textContent'), / · line 8: 6 moves$/);
+
+  // The cursor in SLOT.SPF on line 4: its cut in all three runs.
+  await page.evaluate(`harness.setCursor(4, '${SLOT_URI}')`);
+  await until('toolpathDebug.state.cursorFile !== undefined', 'the cursor in SLOT.SPF');
+  await page.evaluate('toolpathDebug.redrawNow()');
+  for (const [x, y] of [[20, 10], [20, 30], [40, 30]]) {
+    const [sx, sy] = await screen(x, y);
+    assert.ok(await hasColour(sx, sy, HIGHLIGHT), `SLOT.SPF line 4 at X${x} Y${y} is highlighted`);
+  }
+  assert.match(await page.evaluate('document.getElementById("status").textContent'), / · SLOT\.SPF line 4: 3 moves$/);
+
+  // Hovering the third run names the block, the pass, the file and the call; a click asks for that file's line.
+  const [ox, oy] = await canvasOrigin();
+  const [cx, cy] = await screen(42, 30);
+  await page.hover(ox + cx, oy + cy + 1);
+  assert.equal(await page.evaluate('document.getElementById("tip").textContent'),
+    'N20, pass 3 of 3, SLOT.SPF line 4  G1  → X50 Y30 Z-2 F400\ncalled at calls_mill.mpf line 8');
+  const reveals = await page.evaluate('harness.sent.filter((m) => m.type === "reveal").length');
+  await page.mouse('mousePressed', ox + cx, oy + cy + 1);
+  await page.mouse('mouseReleased', ox + cx, oy + cy + 1);
+  await until(`harness.sent.filter((m) => m.type === "reveal").length > ${reveals}`, 'a reveal message');
+  assert.deepEqual(await page.evaluate('harness.sent[harness.sent.length - 1]'), { type: 'reveal', line: 4, file: SLOT_URI });
+  await page.evaluate('toolpathDebug.redrawNow()');
+  assert.match(await page.evaluate('document.getElementById("status").textContent'), / · N20, pass 3 of 3, SLOT\.SPF line 4$/);
+});
+
+test('a conditional move is drawn faded, and the legend and the status say what that means', async () => {
+  await page.evaluate('harness.setCursor(1)');
+  await until('toolpathDebug.state.cursorLine === 1', 'the cursor message');
+  await page.evaluate('toolpathDebug.redrawNow()');
+  /** The most blue above the background around a point: a feed line drawn in full or faded. */
+  const blue = async (x, y) => {
+    const [sx, sy] = await screen(x, y);
+    return Math.max(...(await colours(sx, sy, 2)).map(([, , b]) => b - BACKGROUND[2]));
+  };
+  const full = await blue(20, 10); // SLOT.SPF's cut of the first run
+  const faded = await blue(70, 40); // N160 G1 X80 under IF $A_IN[1]==1
+  assert.ok(full > 150, `a feed move in full: ${full}`);
+  assert.ok(faded > 50 && faded < 130, `the conditional move, faded: ${faded}`);
+  const status = await page.evaluate('document.getElementById("status").textContent');
+  assert.match(status, / · 1 conditional \(faded\) · /);
+  const legend = await page.evaluate('(() => { const item = document.querySelector(".swatch.conditional").parentElement; return [item.textContent, item.title]; })()');
+  assert.deepEqual(legend, ['conditional', 'faded: on a way whose condition the analysis could not decide']);
 });
 
 test('a million moves draw within a frame budget (figures printed)', async () => {

@@ -30,6 +30,11 @@ export class Uri {
   static file(file: string): Uri {
     return new Uri(file);
   }
+  /** Only `file:` URIs, which are all the tests use. */
+  static parse(text: string): Uri {
+    if (!text.startsWith('file://')) throw new Error(`the stand-in reads file: URIs only, not ${text}`);
+    return new Uri(decodeURIComponent(text.slice('file://'.length)));
+  }
   static joinPath(base: Uri, ...parts: string[]): Uri {
     return new Uri(path.join(base.fsPath, ...parts));
   }
@@ -126,6 +131,10 @@ export const recorded = {
   quickPicks: [] as { label: string }[][],
   quickPickAnswers: [] as (string | undefined)[],
   shownDocuments: [] as FakeDocument[],
+  shownEditors: [] as FakeEditor[],
+  /** The files `workspace.openTextDocument` finds (by path), and the URIs it was asked for. */
+  files: new Map<string, FakeDocument>(),
+  opened: [] as string[],
   settings: {} as Record<string, unknown>,
   activeEditorChanged: new EventEmitter<FakeEditor | undefined>(),
   selectionChanged: new EventEmitter<{ textEditor: FakeEditor; selections: Selection[] }>(),
@@ -145,9 +154,11 @@ export const window = {
     recorded.statusItems.push(item);
     return item;
   },
-  async showTextDocument(document: FakeDocument) {
+  async showTextDocument(document: FakeDocument, options?: { viewColumn?: number }) {
     recorded.shownDocuments.push(document);
-    return window.visibleTextEditors.find((editor) => editor.document === document) ?? new FakeEditor(document);
+    const editor = window.visibleTextEditors.find((candidate) => candidate.document === document) ?? new FakeEditor(document, options?.viewColumn);
+    recorded.shownEditors.push(editor);
+    return editor;
   },
   async showInformationMessage(message: string) {
     recorded.information.push(message);
@@ -176,6 +187,12 @@ export const window = {
 
 export const workspace = {
   onDidChangeTextDocument: recorded.documentChanged.event,
+  async openTextDocument(uri: Uri) {
+    recorded.opened.push(uri.toString());
+    const document = recorded.files.get(uri.fsPath);
+    if (!document) throw new Error(`cannot open ${uri.fsPath}: no such file`);
+    return document;
+  },
   getConfiguration(section: string) {
     return { get: (key: string) => recorded.settings[`${section}.${key}`] };
   },

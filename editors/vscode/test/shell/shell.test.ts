@@ -87,6 +87,78 @@ test('the toolpath panel loads the program, follows the cursor and edits, and re
   panel.dispose();
 });
 
+const calls = readFixture('calls_mill.preview.json') as { moves: { line: number; stack?: { line: number }[] }[] };
+
+/** A server that answers the toolpath of calls_mill.mpf by outermost line, as the server does. */
+function callsServer() {
+  return fakeServer((method, params) => {
+    if (method === 'sinumerik/modalState') return null;
+    const { startLine, endLine } = (params as { arguments: { startLine: number; endLine: number }[] }).arguments[0];
+    const outer = (m: (typeof calls.moves)[number]) => (m.stack?.length ? m.stack[0].line : m.line) - 1;
+    return { ...calls, moves: calls.moves.filter((m) => outer(m) >= startLine && outer(m) <= endLine) };
+  });
+}
+
+test('a click on a move of a called program opens that program at its line, which stays linked to the toolpath', async () => {
+  const program = new FakeDocument('/work/calls_mill.mpf', new Array(19).fill('N10 G1 X1'));
+  const editor = new FakeEditor(program);
+  const slot = new FakeDocument('/work/SLOT.SPF', ['; slot', 'PROC SLOT', 'N10 G91 G1 Z-7 F200', 'N20 X20 F400', 'N30 G0 Z7', 'N40 G90', 'N50 M17']);
+  recorded.files.set(slot.fileName, slot);
+  fake.window.activeTextEditor = editor;
+  fake.window.visibleTextEditors = [editor];
+  ToolpathPanel.show(context, callsServer());
+  const panel = recorded.panels[recorded.panels.length - 1];
+  panel.fromPage.fire({ type: 'ready' });
+  await wait(50);
+  const append = (panel.toPage as ToPage[]).find((m) => m.type === 'append');
+  assert.ok(append && append.type === 'append');
+  assert.deepEqual(append.packed.files, ['file:///work/calls_mill.mpf', 'file:///work/SLOT.SPF']);
+
+  // The page asks for line 4 of SLOT.SPF (N20, the slot's cut).
+  const shown = recorded.shownDocuments.length;
+  panel.fromPage.fire({ type: 'reveal', line: 4, file: 'file:///work/SLOT.SPF' });
+  await wait(10);
+  assert.deepEqual(recorded.opened.slice(-1), ['file:///work/SLOT.SPF'], 'the file is opened by its URI');
+  assert.equal(recorded.shownDocuments.length, shown + 1);
+  assert.equal(recorded.shownDocuments[shown], slot);
+  const slotEditor = recorded.shownEditors[recorded.shownEditors.length - 1];
+  assert.equal(slotEditor.viewColumn, editor.viewColumn, 'in the column of the program shown');
+  const { start, end } = slotEditor.selection;
+  assert.deepEqual([start.line, start.character, end.line, end.character], [3, 0, 3, 12]);
+  assert.equal(slotEditor.revealed.length, 1);
+
+  // The called program becomes the active editor: the panel keeps the program it shows, and the
+  // cursor in SLOT.SPF is sent with its file.
+  const before = panel.toPage.length;
+  fake.window.activeTextEditor = slotEditor;
+  fake.window.visibleTextEditors = [slotEditor];
+  recorded.activeEditorChanged.fire(slotEditor);
+  slotEditor.selection = new Selection(new Position(4, 0), new Position(4, 0));
+  recorded.selectionChanged.fire({ textEditor: slotEditor, selections: [slotEditor.selection] });
+  await wait(10);
+  assert.equal(panel.title, 'Toolpath: calls_mill.mpf');
+  const sent = panel.toPage.slice(before) as ToPage[];
+  assert.ok(!sent.some((m) => m.type === 'reset'), 'no reload for the called program');
+  assert.deepEqual(sent[sent.length - 1], { type: 'cursor', line: 5, file: 'file:///work/SLOT.SPF' });
+
+  // An edit of the called program redraws the toolpath that runs through it.
+  recorded.documentChanged.fire({ document: slot });
+  await wait(500);
+  assert.ok((panel.toPage.slice(before) as ToPage[]).some((m) => m.type === 'reset'), 'an edit of SLOT.SPF reloads');
+  assert.deepEqual(panel.toPage[panel.toPage.length - 1], { type: 'cursor', line: 5, file: 'file:///work/SLOT.SPF' }, 'the cursor stays in SLOT.SPF');
+
+  // A file that cannot be opened is said so.
+  panel.fromPage.fire({ type: 'reveal', line: 2, file: 'file:///work/GONE.SPF' });
+  await wait(10);
+  assert.match(recorded.errors[recorded.errors.length - 1], /file:\/\/\/work\/GONE\.SPF could not be opened: cannot open \/work\/GONE\.SPF/);
+
+  // A program that is not part of the toolpath becomes the one shown.
+  const other = new FakeEditor(new FakeDocument('/work/OTHER.SPF', ['N10 G0 X0']));
+  recorded.activeEditorChanged.fire(other);
+  assert.equal(panel.title, 'Toolpath: OTHER.SPF');
+  panel.dispose();
+});
+
 test('the panel asks for a SINUMERIK program when another file is active', () => {
   const other = new FakeEditor(new FakeDocument('/work/notes.txt', ['x'], 'plaintext'));
   fake.window.activeTextEditor = other;

@@ -4,9 +4,14 @@ import { packMoves } from '../../src/core/packed';
 import { parsePreview } from '../../src/core/preview';
 import {
   arcScale, distanceToSegment, fitView, guessPlane, KIND_ARC, KIND_ARC_UNVERIFIED, KIND_RAPID, KIND_UNCERTAIN,
-  pick, project, revealPoint, segmentsOfLine, toScreen, toWorld, zoomAt,
+  pick, project, revealPoint, toScreen, toWorld, zoomAt, type Projected,
 } from '../../src/webview/geometry';
+import { segmentsCausedBy } from '../../src/webview/selection';
 import { move, readFixture } from './fixtures';
+import type { PackedToolpath } from '../../src/core/packed';
+
+/** The drawn segments of a line of the previewed file. */
+const segmentsOfLine = (p: Projected, packed: PackedToolpath, line: number) => [...segmentsCausedBy(p, packed, 0, line)];
 
 const demo = () => packMoves(parsePreview(readFixture('demo_mill.preview.json')).moves);
 
@@ -16,27 +21,27 @@ test('the demo program projects onto X/Y with its arcs, rapids and uncertain mov
   const p = project(packed, 'G17');
   assert.equal(p.hidden, 1, 'the first move has no known start');
   assert.equal(p.count, packed.count - 1);
-  const [first] = segmentsOfLine(p, 8); // N70 G3 X70 Y10 CR=10 from X60 Y0
+  const [first] = segmentsOfLine(p, packed, 8); // N70 G3 X70 Y10 CR=10 from X60 Y0
   assert.ok(p.kind[first] & KIND_ARC);
   assert.deepEqual([p.cx[first], p.cy[first], p.rx[first], p.ry[first]], [60, 10, 10, 10]);
   assert.ok(Math.abs(p.a0[first] + Math.PI / 2) < 1e-12, 'starts below the centre');
   assert.ok(Math.abs(p.sweep[first] - Math.PI / 2) < 1e-12, 'a quarter counter-clockwise');
-  const [circle] = segmentsOfLine(p, 18); // N170 G2 full circle
+  const [circle] = segmentsOfLine(p, packed, 18); // N170 G2 full circle
   assert.ok(Math.abs(p.sweep[circle] + 2 * Math.PI) < 1e-12, 'a full circle clockwise');
-  const [rapid] = segmentsOfLine(p, 16); // N150 G0 X35 Y10
+  const [rapid] = segmentsOfLine(p, packed, 16); // N150 G0 X35 Y10
   assert.ok(p.kind[rapid] & KIND_RAPID);
-  assert.equal(p.kind[segmentsOfLine(p, 7)[0]] & KIND_RAPID, 0);
-  assert.ok(p.kind[segmentsOfLine(p, 25)[0]] & KIND_UNCERTAIN, 'after the label every axis is uncertain');
+  assert.equal(p.kind[segmentsOfLine(p, packed, 7)[0]] & KIND_RAPID, 0);
+  assert.ok(p.kind[segmentsOfLine(p, packed, 25)[0]] & KIND_UNCERTAIN, 'after the label every axis is uncertain');
   assert.deepEqual(p.bounds, { minX: -10, minY: -10, maxX: 70, maxY: 50 });
 });
 
 test('moves without a start or with an unknown plane axis are counted, not drawn', () => {
-  const p = project(packMoves([move(1, 'G0', {}, { X: 1, Y: 1 }), move(2, 'G1', { X: 1, Y: 1 }, { X: 2 }), move(3, 'G1', { X: 1, Y: 1 }, { X: 2, Y: 3 })]), 'G17');
+  const packed = packMoves([move(1, 'G0', {}, { X: 1, Y: 1 }), move(2, 'G1', { X: 1, Y: 1 }, { X: 2 }), move(3, 'G1', { X: 1, Y: 1 }, { X: 2, Y: 3 })]);
+  const p = project(packed, 'G17');
   assert.equal(p.hidden, 2);
   assert.equal(p.count, 1);
-  assert.deepEqual(segmentsOfLine(p, 3), [0, 1]);
-  const [first, end] = segmentsOfLine(p, 2);
-  assert.equal(end, first, 'a line without a drawn move has no segments');
+  assert.deepEqual(segmentsOfLine(p, packed, 3), [0]);
+  assert.deepEqual(segmentsOfLine(p, packed, 2), [], 'a line without a drawn move has no segments');
 });
 
 test('a lathe arc with X shown as a diameter is drawn as the stretched circle it is', () => {

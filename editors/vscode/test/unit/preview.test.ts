@@ -1,6 +1,6 @@
 import assert from 'node:assert/strict';
 import { test } from 'node:test';
-import { parsePreview, PreviewFormatError } from '../../src/core/preview';
+import { outermostLine, parsePreview, PreviewFormatError } from '../../src/core/preview';
 import { readFixture } from './fixtures';
 
 test('the CLI preview of the demo program is read move by move', () => {
@@ -38,5 +38,59 @@ test('a malformed answer is an error that names the place', () => {
   ];
   for (const [value, message] of cases) {
     assert.throws(() => parsePreview(value), (error: unknown) => error instanceof PreviewFormatError && message.test(error.message));
+  }
+});
+
+test('an older answer without passes, files or calls reads as moves of the previewed file, each run once', () => {
+  const preview = parsePreview(readFixture('demo_mill.preview.json'));
+  assert.deepEqual(preview.assumed, {});
+  for (const move of preview.moves) {
+    assert.deepEqual([move.pass, move.file, move.stack, move.assumed, move.conditional], [null, null, [], [], false]);
+    assert.equal(outermostLine(move), move.line);
+  }
+});
+
+test('moves in execution order carry their pass, their file, their calls and whether they are conditional', () => {
+  const preview = parsePreview(readFixture('calls_mill.preview.json'));
+  assert.equal(preview.moves.length, 23);
+  assert.deepEqual(preview.assumed, {}, 'an empty object: nothing assumed');
+  // The third run of SLOT.SPF line 4 (N20), called by N70 SLOT P2 on line 8.
+  const slot = preview.moves.filter((m) => m.file === 'SLOT.SPF' && m.line === 4);
+  assert.deepEqual(slot.map((m) => m.pass), [1, 2, 3]);
+  assert.deepEqual(slot[2].stack, [{ file: 'calls_mill.mpf', line: 8 }]);
+  assert.equal(outermostLine(slot[2]), 8);
+  assert.deepEqual(preview.moves.filter((m) => m.line === 11 && m.file === null).map((m) => m.pass), [1, 2, 3], 'the loop runs three times');
+  const conditional = preview.moves.filter((m) => m.conditional);
+  assert.deepEqual(conditional.map((m) => m.block), ['N160']);
+});
+
+test('the assumed entry state of a subprogram and the axes that rest on it are read', () => {
+  const preview = parsePreview({
+    file: 'SLOT.SPF',
+    assumed: { units: 'G71', distance: 'G90', plane: 'G17' },
+    moves: [{ line: 3, motion: 'G1', end: { X: 20 }, assumed: ['x', 'Y'], stack: [{ line: 2 }], pass: 2 }],
+  });
+  assert.deepEqual(preview.assumed, { units: 'G71', distance: 'G90', plane: 'G17' });
+  assert.deepEqual(preview.moves[0].assumed, ['X', 'Y']);
+  assert.deepEqual(preview.moves[0].stack, [{ file: null, line: 2 }], 'a call site without a file is in the previewed file');
+  assert.equal(parsePreview({ assumed: null, moves: [] }).assumed.units, undefined);
+});
+
+test('a malformed pass, file, stack, assumed or conditional is an error that names the place', () => {
+  const base = { line: 1, motion: 'G1', end: {} };
+  const cases: [unknown, RegExp][] = [
+    [{ moves: [{ ...base, pass: 0 }] }, /moves\[0\]: pass is not a positive integer/],
+    [{ moves: [{ ...base, pass: 1.5 }] }, /pass is not a positive integer/],
+    [{ moves: [{ ...base, file: 3 }] }, /moves\[0\]: file is not a string/],
+    [{ moves: [{ ...base, stack: {} }] }, /moves\[0\]: stack is not a list of call sites/],
+    [{ moves: [base, { ...base, stack: [{ file: 'A.MPF', line: 2 }, { file: 'B.SPF' }] }] }, /moves\[1\]\.stack\[1\]: line is not a positive integer/],
+    [{ moves: [{ ...base, stack: [{ file: 7, line: 2 }] }] }, /moves\[0\]\.stack\[0\]: file is not a string/],
+    [{ moves: [{ ...base, assumed: 'X' }] }, /assumed is not a list of axis names/],
+    [{ moves: [{ ...base, conditional: 'yes' }] }, /conditional is not true or false/],
+    [{ moves: [], assumed: ['G71'] }, /answer: assumed is not an object/],
+    [{ moves: [], assumed: { units: 71 } }, /assumed units is not a string/],
+  ];
+  for (const [value, message] of cases) {
+    assert.throws(() => parsePreview(value), (error: unknown) => error instanceof PreviewFormatError && message.test(error.message), String(message));
   }
 });

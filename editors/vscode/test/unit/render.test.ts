@@ -2,8 +2,9 @@ import assert from 'node:assert/strict';
 import { test } from 'node:test';
 import { allocatePacked, FLAG_RAPID, packMoves, type PackedToolpath } from '../../src/core/packed';
 import { parsePreview } from '../../src/core/preview';
-import { fitView, project, segmentsOfLine, toScreen, zoomAt } from '../../src/webview/geometry';
-import { LIGHT_STYLES, render, STYLES, type CanvasLike, type PathLike } from '../../src/webview/render';
+import { fitView, project, toScreen, zoomAt } from '../../src/webview/geometry';
+import { segmentsCausedBy } from '../../src/webview/selection';
+import { fadedColour, LIGHT_STYLES, MAX_MARKERS, render, STYLES, type CanvasLike, type PathLike } from '../../src/webview/render';
 import { readFixture } from './fixtures';
 
 interface Command { op: string; args: number[] }
@@ -30,7 +31,10 @@ class RecordingCanvas implements CanvasLike {
   clearRect() {}
 }
 
-const demo = () => project(packMoves(parsePreview(readFixture('demo_mill.preview.json')).moves), 'G17');
+const demoPacked = () => packMoves(parsePreview(readFixture('demo_mill.preview.json')).moves);
+const demo = () => project(demoPacked(), 'G17');
+/** The drawn segments of a line of the demo program. */
+const segmentsOfLine = (p: ReturnType<typeof demo>, line: number) => segmentsCausedBy(p, demoPacked(), 0, line);
 
 test('the demo program draws feeds solid, rapids dashed, arcs as arcs and the cursor line on top', () => {
   const p = demo();
@@ -60,6 +64,23 @@ test('a light theme draws with the light palette', () => {
   render(canvas, () => new RecordingPath(), p, fitView(p.bounds, 820, 620, 10), 820, 620, '#fff', segmentsOfLine(p, 8), LIGHT_STYLES);
   const colours = new Set(canvas.strokes.map((s) => s.colour));
   assert.deepEqual(colours, new Set([LIGHT_STYLES.feed.colour, LIGHT_STYLES.rapid.colour, LIGHT_STYLES.uncertainFeed.colour, LIGHT_STYLES.highlight.colour]));
+});
+
+test('conditional moves are drawn faded in their own path, and each highlighted move gets its end marker', () => {
+  const packed = packMoves(parsePreview(readFixture('calls_mill.preview.json')).moves);
+  const p = project(packed, 'G17');
+  const canvas = new RecordingCanvas();
+  const line8 = segmentsCausedBy(p, packed, 0, 8);
+  render(canvas, () => new RecordingPath(), p, fitView(p.bounds, 820, 620, 10), 820, 620, '#000', line8);
+  const faded = canvas.strokes.filter((s) => s.colour === fadedColour(STYLES.feed.colour));
+  assert.equal(fadedColour(STYLES.feed.colour), '#3b8eea80');
+  assert.equal(faded.length, 1, 'one faded path for the conditional feed move');
+  assert.deepEqual(faded[0].path.commands.map((c) => c.op), ['moveTo', 'lineTo'], 'N160 G1 X80 alone');
+  assert.equal(canvas.fills, 1 + line8.length, 'background and a marker on each of the six moves of line 8');
+  const many = new RecordingCanvas();
+  const overLimit = Uint32Array.from({ length: MAX_MARKERS + 1 }, (_, i) => i % p.count);
+  render(many, () => new RecordingPath(), p, fitView(p.bounds, 820, 620, 10), 820, 620, '#000', overLimit);
+  assert.equal(many.fills, 2, 'beyond the limit of markers, the last move only');
 });
 
 test('zoomed in on a corner, chunks off screen are skipped', () => {
