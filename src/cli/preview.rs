@@ -76,7 +76,7 @@ pub(crate) fn run_preview(
             let mut written = Ok(());
             let diagnostics = run(&mut |movement| {
                 if written.is_ok() {
-                    written = preview_json::write_executed_move(&mut out, &movement, first);
+                    written = preview_json::write_executed_move(&mut out, &movement, first, &file);
                     first = false;
                 }
             });
@@ -170,7 +170,7 @@ pub(crate) fn write_executed_preview_json(
 ) -> io::Result<()> {
     preview_json::write_header_with(out, file, metric, assumed)?;
     for (index, movement) in moves.iter().enumerate() {
-        preview_json::write_executed_move(out, movement, index == 0)?;
+        preview_json::write_executed_move(out, movement, index == 0, file)?;
     }
     let columns = std::cell::RefCell::new(columns);
     preview_json::write_footer(out, diagnostics, &|item| {

@@ -66,6 +66,7 @@ pub(crate) fn write_executed_move(
     out: &mut dyn Write,
     executed: &ExecutedMove,
     first: bool,
+    file: &str,
 ) -> io::Result<()> {
     write_move_fields(out, &executed.movement, first)?;
     if executed.pass > 0 {
@@ -82,10 +83,8 @@ pub(crate) fn write_executed_move(
                 out.write_all(b",")?;
             }
             out.write_all(b"{\"file\":")?;
-            match &site.path {
-                Some(path) => serde_json::to_writer(&mut *out, path.as_ref())?,
-                None => out.write_all(b"null")?,
-            }
+            let path = site.path.as_deref().unwrap_or(file);
+            serde_json::to_writer(&mut *out, path)?;
             write!(out, ",\"line\":{}}}", site.line + 1)?;
         }
         out.write_all(b"]")?;
