@@ -4,7 +4,7 @@
 //! number it cannot stand behind.
 
 use crate::analysis::axis_lookup::AxisLookup;
-use crate::analysis::eval::{evaluate, EvalError, Variables};
+use crate::analysis::eval::{evaluate_value, EvalOptions, Value, Variables};
 use crate::analysis::four_decimals::FourDecimals;
 use crate::analysis::state::ModalState;
 use crate::config::{AxisKind, MachineConfig};
@@ -14,6 +14,7 @@ use crate::syntax::gcodes::GCode;
 use std::borrow::Cow;
 use std::sync::Arc;
 
+mod assignments;
 mod checks;
 mod circles;
 mod frame_variables;
@@ -979,17 +980,45 @@ impl<'a> Engine<'a> {
         value: Option<ExprId>,
         diagnostics: &mut Vec<Diagnostic>,
     ) {
-        let evaluated = value
-            .and_then(|id| evaluate_or_report(block, line, id, &self.state.variables, diagnostics));
+        let evaluated = value.and_then(|id| {
+            evaluate_value_or_report(block, line, id, &self.state.variables, diagnostics)
+        });
         // After a jump or inside a control structure the assignment may run any number of times.
         let evaluated = if self.flow_uncertain { None } else { evaluated };
+        let number = evaluated.as_ref().and_then(Value::number);
         match target {
-            AssignTarget::RParameter(number) => {
-                self.state.variables.set_r_parameter(*number, evaluated)
+            AssignTarget::RParameter(parameter) => {
+                self.state.variables.set_r_parameter(*parameter, number)
             }
-            AssignTarget::Variable { indexes } if indexes.is_empty() => {
-                let name = line[target_span.start()..target_span.end()].to_ascii_uppercase();
-                self.state.variables.set_variable(&name, evaluated);
+            AssignTarget::RParameterIndexed(index) => self.write_indexed_r_parameter(
+                line,
+                block,
+                *index,
+                target_span,
+                number,
+                diagnostics,
+            ),
+            AssignTarget::Variable { indexes } => self.write_variable(
+                line,
+                block,
+                target_span,
+                indexes,
+                value,
+                evaluated,
+                diagnostics,
+            ),
+            // `$R[n]` names the same parameters as `R[n]` (reference §8.1).
+            AssignTarget::SystemVariable { indexes }
+                if indexes.len() == 1 && is_r_parameter_array(line, target_span) =>
+            {
+                self.write_indexed_r_parameter(
+                    line,
+                    block,
+                    indexes[0],
+                    target_span,
+                    number,
+                    diagnostics,
+                )
             }
             AssignTarget::SystemVariable { indexes } => {
                 self.apply_system_variable_write(
@@ -1004,7 +1033,6 @@ impl<'a> Engine<'a> {
             AssignTarget::GGroup { group } => {
                 self.apply_group_write(line, block, *group, value, diagnostics);
             }
-            _ => {}
         }
     }
 
@@ -1589,6 +1617,8 @@ impl<'a> Engine<'a> {
     }
 }
 
+/// The number an expression gives, or `None` when unknown or a text; errors of the program are
+/// reported.
 fn evaluate_or_report(
     block: &Block,
     line: &str,
@@ -1596,17 +1626,34 @@ fn evaluate_or_report(
     variables: &Variables,
     diagnostics: &mut Vec<Diagnostic>,
 ) -> Option<f64> {
-    match evaluate(block, line, id, variables) {
+    evaluate_value_or_report(block, line, id, variables, diagnostics)?.number()
+}
+
+/// The value an expression gives, or `None` when unknown; errors of the program (alarms 14051,
+/// 14020, 17020) are reported.
+fn evaluate_value_or_report(
+    block: &Block,
+    line: &str,
+    id: ExprId,
+    variables: &Variables,
+    diagnostics: &mut Vec<Diagnostic>,
+) -> Option<Value> {
+    match evaluate_value(block, line, id, variables, &EvalOptions::default()) {
         Ok(value) => value,
-        Err(EvalError::DivisionByZero(span)) => {
-            diagnostics.push(Diagnostic::new(
-                Code::DivisionByZero,
-                span,
-                "division by zero (alarm 14051)",
-            ));
+        Err(error) => {
+            diagnostics.push(assignments::eval_error_diagnostic(block, line, error));
             None
         }
     }
+}
+
+/// Whether an assignment's target is `$R[...]`, the R parameters by number.
+fn is_r_parameter_array(line: &str, target_span: crate::diagnostics::Span) -> bool {
+    let written = &line[target_span.start()..target_span.end()];
+    written
+        .split('[')
+        .next()
+        .is_some_and(|name| name.trim().eq_ignore_ascii_case("$R"))
 }
 
 /// The axis name of a word: the letter and its numeric extension (`X`, `X1`), or the whole name.
