@@ -1641,7 +1641,7 @@ fn evaluate_value_or_report(
     match evaluate_value(block, line, id, variables, &EvalOptions::default()) {
         Ok(value) => value,
         Err(error) => {
-            diagnostics.push(assignments::eval_error_diagnostic(block, line, error));
+            diagnostics.push(assignments::eval_error_diagnostic(line, error));
             None
         }
     }

@@ -13,7 +13,8 @@ const MAX_QUOTE_CHARACTERS: usize = 60;
 
 /// `text` for a message, shortened when long: a finding about a megabyte-long name helps nobody.
 fn quoted(text: &str) -> String {
-    if text.chars().count() <= MAX_QUOTE_CHARACTERS {
+    // Looks at most one character past the limit, however long the text.
+    if text.chars().nth(MAX_QUOTE_CHARACTERS).is_none() {
         return text.to_string();
     }
     let mut short: String = text.chars().take(MAX_QUOTE_CHARACTERS - 1).collect();
@@ -31,7 +32,7 @@ fn whole_number(number: f64) -> String {
 }
 
 /// The finding for an error of the program found while evaluating an expression of `line`.
-pub(super) fn eval_error_diagnostic(block: &Block, line: &str, error: EvalError) -> Diagnostic {
+pub(super) fn eval_error_diagnostic(line: &str, error: EvalError) -> Diagnostic {
     match error {
         EvalError::DivisionByZero(span) => {
             Diagnostic::new(Code::DivisionByZero, span, "division by zero (alarm 14051)")
@@ -53,18 +54,7 @@ pub(super) fn eval_error_diagnostic(block: &Block, line: &str, error: EvalError)
                 _ if expected == 1 => "1 argument".to_string(),
                 _ => format!("{expected} arguments"),
             };
-            // The call's node gives the number written.
-            let written = block.exprs.iter().find_map(|expr| match &expr.kind {
-                ExprKind::Call { args, .. } if expr.span == span => Some(args.len()),
-                _ => None,
-            });
-            let message = match written {
-                Some(written) => format!(
-                    "{} takes {takes}, not {written} (alarm 14020)",
-                    quoted(&name)
-                ),
-                None => format!("{} takes {takes} (alarm 14020)", quoted(&name)),
-            };
+            let message = format!("{} takes {takes} (alarm 14020)", quoted(&name));
             Diagnostic::new(Code::FunctionArgumentCount, span, message)
         }
         EvalError::IndexOutOfRange(span) => Diagnostic::new(
