@@ -250,6 +250,9 @@ codes! {
     SuppressionWithoutAxes = "A222", Hint, "G53, G153 or SUPA in a block without axis values: they act only on the axes of their own block.";
     IncrementAfterOffsetChange = "A223", Hint, "A G91 move of an axis right after a settable offset or frame change: the change is traversed in addition (SD42440 = 1).";
     AxisLeftOutAfterRotation = "A224", Information, "The first move after a frame change that rotates, scales or mirrors leaves out a geometry axis the change affects: it keeps its value in the new coordinates, so the move may move it too.";
+    ArithmeticError = "A225", Error, "An arithmetic error other than a division by zero in an expression whose values are known: a result beyond the range of a double, or a function argument outside its domain (`SQRT(-1)`, `ACOS(2)`, `LN(0)`) (alarm 14051).";
+    FunctionArgumentCount = "A226", Error, "A predefined function the checker computes, called with a wrong number of arguments (`POT(2,3)`; alarm 14020).";
+    IndexOutOfRange = "A227", Error, "A known index outside the dimensions of a defined array, or a negative R parameter number (alarm 17020).";
     EndlessLoop = "E401", Warning, "A loop or jump cycle that the program never leaves: its state repeats unchanged, so the control would run it forever.";
     ExecutionBudgetUsed = "E402", Information, "The configured budget of executed blocks is used up: the rest of the program is read in program order and its values are uncertain.";
     LoopPassLimit = "E403", Information, "A loop that ran more passes than the configured limit: what its body changes is unknown after it.";

@@ -116,7 +116,13 @@ fn a_loop_and_a_call_are_run_and_their_moves_say_pass_file_and_stack() {
         "{called}"
     );
     assert_eq!(called["stack"][0]["line"], 5);
-    assert!(called["stack"][0]["file"].as_str().unwrap().ends_with("MAIN.MPF"), "{called}");
+    assert!(
+        called["stack"][0]["file"]
+            .as_str()
+            .unwrap()
+            .ends_with("MAIN.MPF"),
+        "{called}"
+    );
     assert!(csv.lines().nth(4).unwrap().ends_with("SIDE.SPF"), "{csv}");
 }
 

@@ -6,6 +6,7 @@
 //! tests run in debug and in release builds, because the lexer and the recursive descent use far more
 //! stack per level in debug builds.
 
+use sinumerik_lsp::analysis::{diagnose_program, ProgramKind};
 use sinumerik_lsp::cli::source_file::{decode_source, decode_windows_1252, SourceEncoding};
 use sinumerik_lsp::config::MachineConfig;
 use sinumerik_lsp::diagnostics::{Code, Diagnostic, LineDiagnostic, Span};
@@ -267,6 +268,39 @@ fn five_megabyte_line_of_mixed_statements_is_parsed_in_linear_time() {
     assert!(
         big_time < quarter_time * 9 + Duration::from_millis(50),
         "1.25 MB took {quarter_time:?} and 5 MB took {big_time:?}: that is not linear"
+    );
+}
+
+#[test]
+fn a_line_of_evaluation_errors_is_analysed_in_linear_time() {
+    // Every statement is an error of the evaluation (A226, A225, A227), each reported with its message.
+    let chunk = "R1=POT(1,2) R2=SQRT(-1) R[-1]=1 R3=ATAN2(BOUND(1)) ";
+    let big = repeat_to(chunk, FIVE_MB / 8);
+    let quarter = repeat_to(chunk, FIVE_MB / 32);
+    let config = MachineConfig::default();
+    let diagnostics = diagnose_program(&big, &config, ProgramKind::Main);
+    let statements = big.len() / chunk.len();
+    assert_eq!(
+        diagnostics
+            .iter()
+            .filter(|item| item.diagnostic.code == Code::FunctionArgumentCount)
+            .count(),
+        2 * statements
+    );
+    let runs = if cfg!(debug_assertions) { 1 } else { 3 };
+    let time = |text: &str| {
+        fastest_of(runs, || {
+            diagnose_program(text, &config, ProgramKind::Main);
+        })
+    };
+    let quarter_time = time(&quarter);
+    let big_time = time(&big);
+    // Linear time gives a ratio near 4 and quadratic time one near 16; the margin absorbs noise.
+    assert!(
+        big_time < quarter_time * 9 + Duration::from_millis(50),
+        "{} bytes took {quarter_time:?} and {} bytes took {big_time:?}: that is not linear",
+        quarter.len(),
+        big.len()
     );
 }
 

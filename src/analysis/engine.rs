@@ -4,7 +4,7 @@
 //! number it cannot stand behind.
 
 use crate::analysis::axis_lookup::AxisLookup;
-use crate::analysis::eval::{evaluate, EvalError, Variables};
+use crate::analysis::eval::{evaluate_value, EvalOptions, Value, Variables};
 use crate::analysis::four_decimals::FourDecimals;
 use crate::analysis::state::ModalState;
 use crate::config::{AxisKind, MachineConfig};
@@ -14,6 +14,7 @@ use crate::syntax::gcodes::GCode;
 use std::borrow::Cow;
 use std::sync::Arc;
 
+mod assignments;
 mod checks;
 mod circles;
 mod frame_variables;
@@ -684,8 +685,12 @@ impl<'a> Engine<'a> {
                 } => {
                     self.apply_assignment(line, block, target, *target_span, *value, diagnostics);
                 }
-                Statement::Definition { declarators, .. } => {
-                    self.apply_definition(line, block, declarators, diagnostics);
+                Statement::Definition {
+                    declarators,
+                    data_type,
+                    ..
+                } => {
+                    self.apply_definition(line, block, *data_type, declarators, diagnostics);
                 }
                 Statement::Call { kind, .. } if *kind != CallKind::Modal && !call_followed => {
                     forget_after = true;
@@ -1043,26 +1048,110 @@ impl<'a> Engine<'a> {
         }
     }
 
-    /// `DEF`: LUD variables start at zero (reference §8.1), or at their initial value. Arrays and
-    /// lists of initial values are not followed: their elements are unknown.
+    /// `DEF`: LUD variables of their type, starting at zero (reference §8.1) or at their initial
+    /// value (`=5`, `=(1,2,3)`, `=SET(..)`, `=REP(..)`); arrays of up to three dimensions.
     fn apply_definition(
         &mut self,
         line: &str,
         block: &Block,
+        data_type: Option<DataType>,
         declarators: &[Declarator],
         diagnostics: &mut Vec<Diagnostic>,
     ) {
+        use crate::analysis::eval::{evaluate_value, EvalOptions, Value, VarType};
+        let var_type = match data_type {
+            Some(DataType::Int) => VarType::Int,
+            Some(DataType::Bool) => VarType::Bool,
+            Some(DataType::Char) => VarType::Char,
+            Some(DataType::String) => VarType::Text,
+            Some(DataType::Axis) => VarType::Axis,
+            Some(DataType::Frame) => VarType::Frame,
+            Some(DataType::Real) | None => VarType::Real,
+        };
+        let options = EvalOptions::default();
         for declarator in declarators {
             let upper = line[declarator.name.start()..declarator.name.end()].to_ascii_uppercase();
-            let value = match (&declarator.initial, declarator.dimensions.is_empty()) {
-                _ if self.flow_uncertain => None,
-                (None, true) => Some(0.0),
-                (Some(Initializer::Value(id)), true) => {
-                    evaluate_or_report(block, line, *id, &self.state.variables, diagnostics)
+            let mut dimensions = Vec::with_capacity(declarator.dimensions.len());
+            for id in &declarator.dimensions {
+                match evaluate_or_report(block, line, *id, &self.state.variables, diagnostics) {
+                    Some(size) if size >= 1.0 && size.fract() == 0.0 && size <= 1e9 => {
+                        dimensions.push(size as usize)
+                    }
+                    _ => {
+                        dimensions.clear();
+                        break;
+                    }
                 }
-                _ => None,
+            }
+            if dimensions.len() != declarator.dimensions.len() {
+                // An array whose size is not known: nothing of it is followed.
+                self.state.variables.set_variable(&upper, None);
+                continue;
+            }
+            if self
+                .state
+                .variables
+                .define(&upper, var_type, &dimensions)
+                .is_err()
+            {
+                self.state.variables.forget_variable(&upper);
+                continue;
+            }
+            if self.flow_uncertain {
+                self.state.variables.forget_variable(&upper);
+                continue;
+            }
+            let value_of = |id: ExprId, variables: &crate::analysis::eval::Variables| {
+                evaluate_value(block, line, id, variables, &options)
+                    .ok()
+                    .flatten()
             };
-            self.state.variables.set_variable(&upper, value);
+            let elements: Vec<Option<Value>> = match &declarator.initial {
+                None => continue,
+                Some(Initializer::Value(id)) => vec![value_of(*id, &self.state.variables)],
+                Some(Initializer::List(items) | Initializer::Set(items)) => items
+                    .iter()
+                    .map(|item| item.and_then(|id| value_of(id, &self.state.variables)))
+                    .collect(),
+                Some(Initializer::Repeat { value, count }) => {
+                    let element = value_of(*value, &self.state.variables);
+                    let total: usize = dimensions.iter().product::<usize>().max(1);
+                    let count = match count {
+                        None => Some(total),
+                        Some(id) => value_of(*id, &self.state.variables)
+                            .and_then(|value| value.number())
+                            .filter(|count| *count >= 0.0 && count.fract() == 0.0)
+                            .map(|count| (count as usize).min(total)),
+                    };
+                    match count {
+                        Some(count) => vec![element; count],
+                        None => {
+                            self.state.variables.forget_variable(&upper);
+                            continue;
+                        }
+                    }
+                }
+            };
+            if dimensions.is_empty() {
+                let _ =
+                    self.state
+                        .variables
+                        .assign(&upper, &[], elements.into_iter().next().flatten());
+                continue;
+            }
+            // Initial values fill the array in the order of its last index first (row by row).
+            for (position, element) in elements.into_iter().enumerate() {
+                let mut indexes = vec![0; dimensions.len()];
+                let mut rest = position;
+                for (slot, size) in indexes.iter_mut().zip(&dimensions).rev() {
+                    *slot = rest % size;
+                    rest /= size;
+                }
+                if rest > 0 {
+                    break;
+                }
+                let _ = self.state.variables.assign(&upper, &indexes, element);
+            }
         }
     }
 
@@ -1075,17 +1164,45 @@ impl<'a> Engine<'a> {
         value: Option<ExprId>,
         diagnostics: &mut Vec<Diagnostic>,
     ) {
-        let evaluated = value
-            .and_then(|id| evaluate_or_report(block, line, id, &self.state.variables, diagnostics));
+        let evaluated = value.and_then(|id| {
+            evaluate_value_or_report(block, line, id, &self.state.variables, diagnostics)
+        });
         // After a jump or inside a control structure the assignment may run any number of times.
         let evaluated = if self.flow_uncertain { None } else { evaluated };
+        let number = evaluated.as_ref().and_then(Value::number);
         match target {
-            AssignTarget::RParameter(number) => {
-                self.state.variables.set_r_parameter(*number, evaluated)
+            AssignTarget::RParameter(parameter) => {
+                self.state.variables.set_r_parameter(*parameter, number)
             }
-            AssignTarget::Variable { indexes } if indexes.is_empty() => {
-                let name = line[target_span.start()..target_span.end()].to_ascii_uppercase();
-                self.state.variables.set_variable(&name, evaluated);
+            AssignTarget::RParameterIndexed(index) => self.write_indexed_r_parameter(
+                line,
+                block,
+                *index,
+                target_span,
+                number,
+                diagnostics,
+            ),
+            AssignTarget::Variable { indexes } => self.write_variable(
+                line,
+                block,
+                target_span,
+                indexes,
+                value,
+                evaluated,
+                diagnostics,
+            ),
+            // `$R[n]` names the same parameters as `R[n]` (reference §8.1).
+            AssignTarget::SystemVariable { indexes }
+                if indexes.len() == 1 && is_r_parameter_array(line, target_span) =>
+            {
+                self.write_indexed_r_parameter(
+                    line,
+                    block,
+                    indexes[0],
+                    target_span,
+                    number,
+                    diagnostics,
+                )
             }
             AssignTarget::SystemVariable { indexes } => {
                 self.apply_system_variable_write(
@@ -1100,7 +1217,6 @@ impl<'a> Engine<'a> {
             AssignTarget::GGroup { group } => {
                 self.apply_group_write(line, block, *group, value, diagnostics);
             }
-            _ => {}
         }
     }
 
@@ -1685,6 +1801,8 @@ impl<'a> Engine<'a> {
     }
 }
 
+/// The number an expression gives, or `None` when unknown or a text; errors of the program are
+/// reported.
 fn evaluate_or_report(
     block: &Block,
     line: &str,
@@ -1692,17 +1810,34 @@ fn evaluate_or_report(
     variables: &Variables,
     diagnostics: &mut Vec<Diagnostic>,
 ) -> Option<f64> {
-    match evaluate(block, line, id, variables) {
+    evaluate_value_or_report(block, line, id, variables, diagnostics)?.number()
+}
+
+/// The value an expression gives, or `None` when unknown; errors of the program (alarms 14051,
+/// 14020, 17020) are reported.
+fn evaluate_value_or_report(
+    block: &Block,
+    line: &str,
+    id: ExprId,
+    variables: &Variables,
+    diagnostics: &mut Vec<Diagnostic>,
+) -> Option<Value> {
+    match evaluate_value(block, line, id, variables, &EvalOptions::default()) {
         Ok(value) => value,
-        Err(EvalError::DivisionByZero(span)) => {
-            diagnostics.push(Diagnostic::new(
-                Code::DivisionByZero,
-                span,
-                "division by zero (alarm 14051)",
-            ));
+        Err(error) => {
+            diagnostics.push(assignments::eval_error_diagnostic(line, error));
             None
         }
     }
+}
+
+/// Whether an assignment's target is `$R[...]`, the R parameters by number.
+fn is_r_parameter_array(line: &str, target_span: crate::diagnostics::Span) -> bool {
+    let written = &line[target_span.start()..target_span.end()];
+    written
+        .split('[')
+        .next()
+        .is_some_and(|name| name.trim().eq_ignore_ascii_case("$R"))
 }
 
 /// The axis name of a word: the letter and its numeric extension (`X`, `X1`), or the whole name.

@@ -3,7 +3,7 @@
 //! `SAVE`, the modal call `MCALL`, the return by `M17`/`RET`/end of file, and the level limit.
 
 use crate::analysis::engine::Engine;
-use crate::analysis::eval::evaluate;
+use crate::analysis::eval::{evaluate, Value, VarType};
 use crate::analysis::execution::interpreter::{Interpreter, Next};
 use crate::analysis::execution::paths::{
     Activation, Argument, CallFrame, Control, ModalCall, SavedModal,
@@ -11,7 +11,9 @@ use crate::analysis::execution::paths::{
 use crate::analysis::execution::program::ProgramUnit;
 use crate::analysis::execution::{CallSite, ProgramEnd};
 use crate::diagnostics::{Code, Span};
-use crate::syntax::ast::{AddressKind, Block, CallKind, ExprId, ExprKind, Statement, ValueExpr};
+use crate::syntax::ast::{
+    AddressKind, Block, CallKind, DataType, ExprId, ExprKind, Statement, ValueExpr,
+};
 use std::sync::Arc;
 
 /// A call about to be run.
@@ -32,7 +34,7 @@ pub(super) struct PendingCall {
 pub(super) struct ProcInfo {
     /// The parameters in order: name, passed by reference (`VAR`), default value of an omitted
     /// argument (`PROC SUB(REAL PA=5)`, else 0).
-    parameters: Vec<(String, bool, Option<f64>)>,
+    parameters: Vec<(String, bool, Option<f64>, VarType)>,
     save: bool,
 }
 
@@ -165,12 +167,20 @@ impl<'a, 's> Interpreter<'a, 's> {
         });
         let caller_locals = engine.state.variables.take_locals();
         let mut references = Vec::new();
-        for (index, (parameter, by_reference, default)) in info.parameters.iter().enumerate() {
+        for (index, (parameter, by_reference, default, var_type)) in
+            info.parameters.iter().enumerate()
+        {
             let value = match call.arguments.get(index) {
                 None | Some(Argument::Omitted) => Some(default.unwrap_or(0.0)),
                 Some(Argument::Given(value)) => *value,
             };
-            engine.state.variables.set_variable(parameter, value);
+            // A parameter is a variable of the subprogram's own level, of its declared type.
+            let variables = &mut engine.state.variables;
+            if variables.define(parameter, *var_type, &[]).is_ok() {
+                let _ = variables.assign(parameter, &[], value.map(Value::Number));
+            } else {
+                variables.set_variable(parameter, value);
+            }
             if *by_reference {
                 if let Some(Some(target)) = call.targets.get(index) {
                     references.push((parameter.clone(), target.clone()));
@@ -275,7 +285,16 @@ impl<'a, 's> Interpreter<'a, 's> {
                             let default = parameter
                                 .default
                                 .and_then(|id| evaluate(&block, line, id, &empty).ok().flatten());
-                            (name, parameter.by_reference, default)
+                            let var_type = match parameter.data_type {
+                                Some(DataType::Int) => VarType::Int,
+                                Some(DataType::Bool) => VarType::Bool,
+                                Some(DataType::Char) => VarType::Char,
+                                Some(DataType::String) => VarType::Text,
+                                Some(DataType::Axis) => VarType::Axis,
+                                Some(DataType::Frame) => VarType::Frame,
+                                Some(DataType::Real) | None => VarType::Real,
+                            };
+                            (name, parameter.by_reference, default, var_type)
                         })
                         .collect();
                     return ProcInfo {

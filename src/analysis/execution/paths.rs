@@ -3,7 +3,7 @@
 //! and are joined when they reach the same place.
 
 use crate::analysis::engine::EngineSnapshot;
-use crate::analysis::eval::Variables;
+use crate::analysis::eval::Locals;
 use crate::analysis::execution::CallSite;
 use crate::analysis::frame::Frame;
 use crate::analysis::state::GROUP_COUNT;
@@ -50,7 +50,7 @@ pub struct CallFrame {
     pub repetitions_left: u32,
     pub saved: Option<SavedModal>,
     /// The caller's own variables, put aside while the subprogram runs.
-    pub caller_locals: Variables,
+    pub caller_locals: Locals,
     /// By-reference parameters: the subprogram's name and the caller's variable (upper case; an R
     /// parameter as `R<n>`).
     pub references: Vec<(String, String)>,
