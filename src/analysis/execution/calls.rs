@@ -3,7 +3,7 @@
 //! `SAVE`, the modal call `MCALL`, the return by `M17`/`RET`/end of file, and the level limit.
 
 use crate::analysis::engine::Engine;
-use crate::analysis::eval::{evaluate, Value, VarType};
+use crate::analysis::eval::{evaluate, Value, VarType, Variables};
 use crate::analysis::execution::interpreter::{Interpreter, Next};
 use crate::analysis::execution::paths::{
     Activation, Argument, CallFrame, Control, ModalCall, SavedModal,
@@ -165,6 +165,18 @@ impl<'a, 's> Interpreter<'a, 's> {
             groups: engine.state.groups,
             frame: engine.state.frame,
         });
+        // Arrays passed by reference (`VAR REAL A[3]`): the subprogram works on their elements.
+        let arrays: Vec<Option<ArrayValues>> = info
+            .parameters
+            .iter()
+            .enumerate()
+            .map(|(index, (_, by_reference, _, _))| {
+                let target = call.targets.get(index)?.as_ref()?;
+                by_reference
+                    .then(|| array_elements(&engine.state.variables, target))
+                    .flatten()
+            })
+            .collect();
         let caller_locals = engine.state.variables.take_locals();
         let mut references = Vec::new();
         for (index, (parameter, by_reference, default, var_type)) in
@@ -176,7 +188,11 @@ impl<'a, 's> Interpreter<'a, 's> {
             };
             // A parameter is a variable of the subprogram's own level, of its declared type.
             let variables = &mut engine.state.variables;
-            if variables.define(parameter, *var_type, &[]).is_ok() {
+            if let Some(Some(array)) = arrays.get(index) {
+                if variables.define(parameter, *var_type, &array.0).is_ok() {
+                    store_elements(variables, parameter, array);
+                }
+            } else if variables.define(parameter, *var_type, &[]).is_ok() {
                 let _ = variables.assign(parameter, &[], value.map(Value::Number));
             } else {
                 variables.set_variable(parameter, value);
@@ -231,19 +247,28 @@ impl<'a, 's> Interpreter<'a, 's> {
         if let Some(saved) = &call.saved {
             engine.restore_saved(&saved.groups, saved.frame);
         }
-        let written: Vec<(String, Option<f64>)> = call
+        let written: Vec<(String, Result<ArrayValues, Option<f64>>)> = call
             .references
             .iter()
-            .map(|(parameter, target)| (target.clone(), engine.state.variables.variable(parameter)))
+            .map(|(parameter, target)| {
+                let variables = &engine.state.variables;
+                let value = array_elements(variables, parameter)
+                    .ok_or_else(|| variables.variable(parameter));
+                (target.clone(), value)
+            })
             .collect();
         engine.state.variables.restore_locals(call.caller_locals);
+        let variables = &mut engine.state.variables;
         for (target, value) in written {
-            match target
-                .strip_prefix('R')
-                .and_then(|number| number.parse::<u32>().ok())
-            {
-                Some(number) => engine.state.variables.set_r_parameter(number, value),
-                None => engine.state.variables.set_variable(&target, value),
+            match value {
+                Ok(array) => store_elements(variables, &target, &array),
+                Err(value) => match target
+                    .strip_prefix('R')
+                    .and_then(|number| number.parse::<u32>().ok())
+                {
+                    Some(number) => variables.set_r_parameter(number, value),
+                    None => variables.set_variable(&target, value),
+                },
             }
         }
         if call.repetitions_left > 0 {
@@ -335,6 +360,41 @@ fn evaluate_arguments(
             ),
         })
         .collect()
+}
+
+/// The dimensions and the elements (the last index counting fastest) of an array variable.
+type ArrayValues = (Vec<usize>, Vec<Option<Value>>);
+
+/// The elements of the array `name`, `None` when it is not an array (or too large to follow).
+fn array_elements(variables: &Variables, name: &str) -> Option<ArrayValues> {
+    let dimensions = variables.dimensions(name)?.to_vec();
+    if dimensions.is_empty() {
+        return None;
+    }
+    let total: usize = dimensions.iter().product();
+    if total > crate::analysis::eval::MAX_FOLLOWED_ELEMENTS {
+        return None;
+    }
+    let elements = (0..total)
+        .map(|position| variables.value(name, &indexes_of(position, &dimensions)))
+        .collect();
+    Some((dimensions, elements))
+}
+
+fn store_elements(variables: &mut Variables, name: &str, (dimensions, elements): &ArrayValues) {
+    for (position, element) in elements.iter().enumerate() {
+        let _ = variables.assign(name, &indexes_of(position, dimensions), element.clone());
+    }
+}
+
+/// The indexes of the `position`-th element, the last index counting fastest.
+fn indexes_of(mut position: usize, dimensions: &[usize]) -> Vec<usize> {
+    let mut indexes = vec![0; dimensions.len()];
+    for (slot, size) in indexes.iter_mut().zip(dimensions).rev() {
+        *slot = position % size;
+        position /= size;
+    }
+    indexes
 }
 
 /// The variable each argument names, when it is a plain variable or R parameter.
