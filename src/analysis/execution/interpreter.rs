@@ -128,10 +128,16 @@ impl<'a, 's> Interpreter<'a, 's> {
     }
 
     /// Runs the program `text` from its first block to its end.
-    pub fn run(mut self, text: Arc<str>, kind: ProgramKind) -> Execution {
-        let subprogram = kind == ProgramKind::Subprogram || crate::analysis::has_proc_header(&text);
-        let main = ProgramUnit::new(String::new(), None, text, self.config);
-        self.add_unit(main);
+    pub fn run(self, text: Arc<str>, kind: ProgramKind) -> Execution {
+        let main = Arc::new(ProgramUnit::new(String::new(), None, text, self.config));
+        self.run_unit(main, kind)
+    }
+
+    /// Runs the program `main` (read once, shared by the runs of one execution).
+    pub fn run_unit(mut self, main: Arc<ProgramUnit>, kind: ProgramKind) -> Execution {
+        let subprogram = kind == ProgramKind::Subprogram || main.has_proc_header();
+        self.passes.push(vec![0; main.line_count()]);
+        self.units.push(main);
         let mut engine = Engine::new(self.config);
         engine.set_executing(true);
         let mut control = Control {

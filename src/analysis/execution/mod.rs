@@ -129,17 +129,22 @@ pub fn execute(
     options: &ExecutionOptions,
     visit: &mut dyn FnMut(ExecutedMove),
 ) -> Execution {
-    let text: Arc<str> = Arc::from(text);
+    let main = Arc::new(program::ProgramUnit::new(
+        String::new(),
+        None,
+        Arc::from(text),
+        config,
+    ));
+    if !main.flow.has_flow {
+        return interpreter::Interpreter::new(config, library, options, visit).run_unit(main, kind);
+    }
     let mut ignore = |_: ExecutedMove| {};
     let counted = interpreter::Interpreter::new(config, library, options, &mut ignore)
         .counting_only()
-        .run(Arc::clone(&text), kind);
-    if !counted.has_flow {
-        return interpreter::Interpreter::new(config, library, options, visit).run(text, kind);
-    }
+        .run_unit(Arc::clone(&main), kind);
     interpreter::Interpreter::new(config, library, options, visit)
         .with_pass_totals(counted.pass_totals)
-        .run(text, kind)
+        .run_unit(main, kind)
 }
 
 /// What the run of `text` assumes about its entry state: for a subprogram analysed on its own with

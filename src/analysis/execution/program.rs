@@ -97,6 +97,11 @@ impl ProgramUnit {
         unit
     }
 
+    /// Whether the program is a subprogram by its `PROC` line.
+    pub fn has_proc_header(&self) -> bool {
+        crate::analysis::has_proc_header(&self.text)
+    }
+
     pub fn line_count(&self) -> usize {
         self.lines.len()
     }
