@@ -710,3 +710,74 @@ async fn cross_file_findings_are_published_with_the_analysis_and_follow_other_fi
     assert!(found.contains(&"S130".to_string()), "{found:?}");
     client.shutdown().await;
 }
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn the_findings_of_running_a_program_are_published_as_check_reports_them() {
+    // MAIN.MPF calls WAIT, which waits in a loop that never ends: the run reports E401 at the call,
+    // with the subprogram found in the workspace, as `check` does.
+    let folder = temp_folder("execution-findings");
+    let main_text = "N10 G90 G0 X0\nN20 WAIT\nN30 G0 X10\nM30\n";
+    std::fs::write(folder.join("MAIN.MPF"), main_text).unwrap();
+    std::fs::write(
+        folder.join("WAIT.SPF"),
+        "PROC WAIT\nN10 LOOP\nN20 MSG(\"waiting\")\nN30 ENDLOOP\nN40 RET\n",
+    )
+    .unwrap();
+    let mut texts = HashMap::new();
+    texts.insert("MAIN.MPF".to_string(), main_text.to_string());
+    let workspace = Workspace {
+        folder,
+        texts,
+        marks: HashMap::new(),
+    };
+    let (mut client, _) = start(&workspace).await;
+    let main = workspace.uri("MAIN.MPF");
+    let published = client
+        .notification("textDocument/publishDiagnostics", |params| {
+            params["uri"] == main.as_str()
+                && codes(&params["diagnostics"]).contains(&"E401".to_string())
+        })
+        .await;
+    let e401 = published["diagnostics"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|diagnostic| diagnostic["code"] == "E401")
+        .unwrap();
+    assert_eq!(e401["range"]["start"]["line"], 1);
+    assert!(
+        e401["message"].as_str().unwrap().starts_with("in WAIT"),
+        "{e401}"
+    );
+    let (code, stdout, _) = {
+        let output = std::process::Command::new(env!("CARGO_BIN_EXE_sinumerik-lsp"))
+            .args(["check", "--format", "json"])
+            .arg(workspace.folder.join("MAIN.MPF"))
+            .output()
+            .unwrap();
+        (
+            output.status.code(),
+            String::from_utf8(output.stdout).unwrap(),
+            output.stderr,
+        )
+    };
+    assert_eq!(code, Some(0));
+    let checked: Value = serde_json::from_str(&stdout).unwrap();
+    let from_check: Vec<(u64, String)> = checked
+        .as_array()
+        .unwrap()
+        .iter()
+        .filter(|item| item["code"].as_str().unwrap().starts_with('E'))
+        .map(|item| {
+            (
+                item["line"].as_u64().unwrap() - 1,
+                item["message"].as_str().unwrap().to_string(),
+            )
+        })
+        .collect();
+    assert_eq!(
+        from_check,
+        vec![(1, e401["message"].as_str().unwrap().to_string())]
+    );
+    client.shutdown().await;
+}

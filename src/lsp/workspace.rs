@@ -393,15 +393,16 @@ pub fn document_closed(shared: &Arc<Shared>, uri: &Uri) {
     });
 }
 
-/// Computes the cross-file findings of every open document from the index and republishes those
-/// whose findings changed. Runs on the blocking pool.
-pub fn refresh_diagnostics(shared: &Shared) {
+/// Computes the cross-file findings of every open document from the index, and the findings of
+/// running it (E401-E408, with the programs it calls), and republishes those whose findings changed.
+/// Runs on the blocking pool.
+pub fn refresh_diagnostics(shared: &Arc<Shared>) {
     let _one_at_a_time = lock(&shared.workspace.refreshing);
     let context = shared.context();
     for document in shared.documents.all() {
         let id = document_id(&document.uri);
         let snapshot = document.text_snapshot();
-        let (findings, built) = {
+        let (mut findings, built) = {
             let state = shared.workspace.read();
             let Some(built) = state.open.get(&id).copied() else {
                 continue;
@@ -411,6 +412,22 @@ pub fn refresh_diagnostics(shared: &Shared) {
                 built,
             )
         };
+        // The run's findings belong to the same revision as the index entry; a newer text gets them
+        // at the next refresh, which its edit starts. The library takes the index's lock itself.
+        if snapshot.revision == built {
+            let library = crate::lsp::library::workspace_library(shared, document.path.as_deref());
+            let run = crate::analysis::execution::execution_findings(
+                &snapshot.rope.to_string(),
+                &snapshot.config,
+                document.kind,
+                library.as_ref(),
+                &snapshot.config.execution,
+            );
+            if !run.is_empty() {
+                findings.extend(run);
+                findings.sort_by_key(|item| (item.line, item.diagnostic.span.start()));
+            }
+        }
         if lock(&document.extra).replace(findings, built) {
             document.republish(&context);
         }
@@ -510,7 +527,7 @@ fn percentage(done: usize, total: usize) -> u32 {
 
 /// Reads every program file below `roots`; `None` when cancelled, else the number of files.
 fn index_roots(
-    shared: &Shared,
+    shared: &Arc<Shared>,
     roots: &[PathBuf],
     cancel: &AtomicBool,
     events: &mpsc::UnboundedSender<RunEvent>,
