@@ -35,7 +35,7 @@ pub struct ExecutionOptions {
 impl Default for ExecutionOptions {
     fn default() -> ExecutionOptions {
         ExecutionOptions {
-            max_blocks: 20_000_000,
+            max_blocks: 10_000_000,
             max_loop_passes: 10_000,
             max_levels: 16,
             entry: EntryState::Reset,

@@ -4,6 +4,7 @@
 use crate::analysis::document::LineSource;
 use crate::analysis::Move;
 use crate::config::MachineConfig;
+use crate::ide::execution::DocumentExecution;
 use crate::lsp::convert::{end_of_line, PositionEncoding};
 use crate::lsp::documents::Analysed;
 use crate::lsp::hover::{axis_of, machine_differs};
@@ -15,6 +16,7 @@ use tower_lsp_server::ls_types::{InlayHint, InlayHintLabel, InlayHintTooltip, Ra
 /// The hints for the lines of `range` (both ends included).
 pub fn inlay_hints(
     analysed: &Analysed,
+    library: &dyn crate::analysis::library::ProgramLibrary,
     range: Range,
     mode: InlayHintMode,
     encoding: PositionEncoding,
@@ -31,9 +33,23 @@ pub fn inlay_hints(
         return Vec::new();
     }
     let config = analysed.analysis.config();
-    analysed
-        .analysis
-        .moves(&lines, first..last)
+    let moves = analysed.analysis.moves(&lines, first..last);
+    // A program whose flow differs from program order (or a subprogram, which starts from an
+    // assumed state) shows what the run gives: the first pass of each block and how often it runs.
+    let needs_run = analysed.analysis.kind() == crate::analysis::ProgramKind::Subprogram
+        || moves.iter().any(|movement| {
+            movement
+                .uncertain
+                .iter()
+                .any(|name| movement.end.iter().any(|(known, _)| known == name))
+        });
+    if needs_run {
+        let execution = analysed.execution(library);
+        if let Some(hints) = run_hints(&execution, &lines, first..last, encoding) {
+            return hints;
+        }
+    }
+    moves
         .iter()
         .filter_map(|movement| {
             let line = lines.line(movement.line);
@@ -56,6 +72,77 @@ pub fn inlay_hints(
             })
         })
         .collect()
+}
+
+/// The hints of a program that was run: per line, the end of the first pass with the count of
+/// passes, and after a call line where the call ends. `None` when the program runs in order.
+fn run_hints(
+    execution: &DocumentExecution,
+    lines: &dyn LineSource,
+    range: std::ops::Range<usize>,
+    encoding: PositionEncoding,
+) -> Option<Vec<InlayHint>> {
+    if matches!(execution, DocumentExecution::InOrder) {
+        return None;
+    }
+    let mut hints = Vec::new();
+    for line_index in range {
+        let moves = execution.moves_of_line(line_index);
+        let own: Vec<_> = moves
+            .iter()
+            .filter(|executed| executed.stack.is_empty())
+            .collect();
+        let called = moves
+            .iter()
+            .filter(|executed| !executed.stack.is_empty())
+            .last();
+        let text = match (own.first(), called) {
+            (Some(first), _) => {
+                let passes = execution.passes_of_line(line_index);
+                let mut text = end_text(&first.movement);
+                if passes > 1 {
+                    text.push_str(&format!(" (pass 1 of {passes})"));
+                }
+                if !first.assumed.is_empty() {
+                    text.push_str(" (assumed entry state)");
+                }
+                text
+            }
+            (None, Some(last)) => format!("{} (after the call)", end_text(&last.movement)),
+            (None, None) => continue,
+        };
+        let line = lines.line(line_index);
+        hints.push(InlayHint {
+            position: end_of_line(line_index, &line, encoding),
+            label: InlayHintLabel::String(text),
+            kind: None,
+            text_edits: None,
+            tooltip: Some(InlayHintTooltip::String(
+                "End point of this block as the program runs (? = unknown)".to_string(),
+            )),
+            padding_left: Some(true),
+            padding_right: None,
+            data: None,
+        });
+    }
+    Some(hints)
+}
+
+/// `⟶ X115 Z60` with `X?` for an unknown axis, in configured order.
+fn end_text(movement: &Move) -> String {
+    let mut parts: Vec<String> = movement
+        .end
+        .iter()
+        .map(|(name, value)| format!("{name}{}", short(*value)))
+        .collect();
+    parts.extend(
+        movement
+            .uncertain
+            .iter()
+            .filter(|name| !movement.end.iter().any(|(known, _)| known == *name))
+            .map(|name| format!("{name}?")),
+    );
+    format!("⟶ {}", parts.join(" "))
 }
 
 /// `⟶ X115 Z60`, with `X?` for an unknown axis and the machine position when a frame moves it.

@@ -933,8 +933,18 @@ impl LanguageServer for Backend {
         let mode = lock(&self.settings).inlay_hints;
         let encoding = self.encoding();
         let range = params.range;
+        let library = crate::lsp::library::workspace_library(
+            &self.shared,
+            file_path(&params.text_document.uri).as_deref(),
+        );
         self.on_analysis(&params.text_document.uri, move |analysed| {
-            Some(inlay_hints(analysed, range, mode, encoding))
+            Some(inlay_hints(
+                analysed,
+                library.as_ref(),
+                range,
+                mode,
+                encoding,
+            ))
         })
         .await
     }

@@ -18,6 +18,9 @@ use crate::syntax::jumps::{resolve_jump, JumpResolution};
 /// such interval before: equal states mean the loop never ends.
 const ENDLESS_CHECK_INTERVAL: u32 = 1000;
 
+/// Section repetitions one program level follows inside each other.
+const MAX_NESTED_REPEATS: usize = 64;
+
 /// REAL values compare with a relative tolerance on the control (reference §18.1).
 fn real_equal(left: f64, right: f64) -> bool {
     (left - right).abs() <= 1e-12 * left.abs().max(right.abs())
@@ -328,6 +331,20 @@ impl<'a, 's> Interpreter<'a, 's> {
         };
         if repetitions < 1.0 || last < first {
             return Next::Line(pc + 1);
+        }
+        // A section that contains its own REPEAT block would start itself again on every pass, and
+        // sections nested without end cannot be followed: the rest is read in program order.
+        let level = control.level();
+        if (first..=last).contains(&pc) || level.repeats.len() >= MAX_NESTED_REPEATS {
+            self.report(
+                control,
+                pc,
+                Code::FlowNotFollowed,
+                span,
+                "this section repetition contains its own REPEAT block or is nested too deeply to follow: from here on the program is read in program order".to_string(),
+            );
+            control.level_mut().pc = pc + 1;
+            return Next::LoseTrack;
         }
         control
             .level_mut()
