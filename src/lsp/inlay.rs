@@ -94,8 +94,8 @@ fn run_hints(
             .collect();
         let called = moves
             .iter()
-            .filter(|executed| !executed.stack.is_empty())
-            .last();
+            .rev()
+            .find(|executed| !executed.stack.is_empty());
         let text = match (own.first(), called) {
             (Some(first), _) => {
                 let passes = execution.passes_of_line(line_index);
