@@ -384,13 +384,24 @@ impl<'a> Engine<'a> {
     /// Forgets what a call of a program the analysis cannot see may change: positions, variables,
     /// frames and the settable offsets' data.
     pub fn forget_after_unknown_call(&mut self) {
+        self.forget_what_a_call_may_change(true);
+    }
+
+    /// Forgets what a called program may change; the settable frames' data only when
+    /// `frame_data_changed` (a call, a kinematic change), not after a tool change.
+    fn forget_what_a_call_may_change(&mut self, frame_data_changed: bool) {
+        // The callee may have programmed a feed, so a later feed move without F is not reported.
         self.missing_feed_reported = true;
         self.state.forget_positions();
         self.state.variables.forget_all();
         self.state.frame = None;
         self.tangent = None;
+        // The callee may select another settable offset; it is read again when the program
+        // selects one.
         self.state.offset.iter_mut().for_each(|value| *value = None);
-        self.state.settable_data.forget_all();
+        if frame_data_changed {
+            self.state.settable_data.forget_all();
+        }
     }
 
     /// From here on the values may not follow the control's path through the program: what the
@@ -844,18 +855,7 @@ impl<'a> Engine<'a> {
         self.last_arc = arc;
         self.start_positions = start_positions;
         if forget_after {
-            // The callee may have programmed a feed, so a later feed move without F is not reported.
-            self.missing_feed_reported = true;
-            self.state.forget_positions();
-            self.state.variables.forget_all();
-            self.state.frame = None;
-            self.tangent = None;
-            // The callee may select another settable offset; it is read again when the program
-            // selects one.
-            self.state.offset.iter_mut().for_each(|value| *value = None);
-            if frame_data_changed {
-                self.state.settable_data.forget_all();
-            }
+            self.forget_what_a_call_may_change(frame_data_changed);
         }
         result
     }
@@ -1059,15 +1059,7 @@ impl<'a> Engine<'a> {
         diagnostics: &mut Vec<Diagnostic>,
     ) {
         use crate::analysis::eval::{evaluate_value, EvalOptions, Value, VarType};
-        let var_type = match data_type {
-            Some(DataType::Int) => VarType::Int,
-            Some(DataType::Bool) => VarType::Bool,
-            Some(DataType::Char) => VarType::Char,
-            Some(DataType::String) => VarType::Text,
-            Some(DataType::Axis) => VarType::Axis,
-            Some(DataType::Frame) => VarType::Frame,
-            Some(DataType::Real) | None => VarType::Real,
-        };
+        let var_type = VarType::of_declared(data_type);
         let options = EvalOptions::default();
         for declarator in declarators {
             let upper = line[declarator.name.start()..declarator.name.end()].to_ascii_uppercase();
@@ -1140,16 +1132,9 @@ impl<'a> Engine<'a> {
                 continue;
             }
             // Initial values fill the array in the order of its last index first (row by row).
-            for (position, element) in elements.into_iter().enumerate() {
-                let mut indexes = vec![0; dimensions.len()];
-                let mut rest = position;
-                for (slot, size) in indexes.iter_mut().zip(&dimensions).rev() {
-                    *slot = rest % size;
-                    rest /= size;
-                }
-                if rest > 0 {
-                    break;
-                }
+            let total: usize = dimensions.iter().product();
+            for (position, element) in elements.into_iter().enumerate().take(total) {
+                let indexes = crate::analysis::eval::element_indexes(position, &dimensions);
                 let _ = self.state.variables.assign(&upper, &indexes, element);
             }
         }

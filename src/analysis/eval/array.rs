@@ -8,6 +8,17 @@ use std::sync::Arc;
 /// Arrays have at most three dimensions (reference §8.1; two in older versions).
 pub const MAX_DIMENSIONS: usize = 3;
 
+/// The indexes of the `position`-th element of an array of `dimensions`, the last index counting
+/// fastest: the order in which initial values and whole arrays are written.
+pub fn element_indexes(mut position: usize, dimensions: &[usize]) -> Vec<usize> {
+    let mut indexes = vec![0; dimensions.len()];
+    for (slot, size) in indexes.iter_mut().zip(dimensions).rev() {
+        *slot = position % size;
+        position /= size;
+    }
+    indexes
+}
+
 /// Arrays with more elements keep their shape (so that indexes are still checked) but not their
 /// values: a copy of the state is taken every 512 blocks, and an array written in every interval is
 /// copied each time.

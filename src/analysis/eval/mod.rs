@@ -18,7 +18,7 @@ mod variables;
 #[cfg(test)]
 mod tests;
 
-pub use array::{IndexError, MAX_DIMENSIONS, MAX_FOLLOWED_ELEMENTS};
+pub use array::{element_indexes, IndexError, MAX_DIMENSIONS, MAX_FOLLOWED_ELEMENTS};
 pub use functions::{function_arguments, is_evaluated_function};
 pub use value::{real_equal, real_less, real_less_equal, Value, INT_RANGE};
 pub use variables::{AssignError, DefineError, Locals, VarType, Variables};

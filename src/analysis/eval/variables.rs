@@ -26,6 +26,22 @@ pub enum VarType {
 }
 
 impl VarType {
+    /// The type of a `DEF` or `PROC` parameter as declared; REAL when no type is written.
+    pub fn of_declared(data_type: Option<crate::syntax::ast::DataType>) -> VarType {
+        use crate::syntax::ast::DataType;
+        match data_type {
+            Some(DataType::Int) => VarType::Int,
+            Some(DataType::Bool) => VarType::Bool,
+            Some(DataType::Char) => VarType::Char,
+            Some(DataType::String) => VarType::Text,
+            Some(DataType::Axis) => VarType::Axis,
+            Some(DataType::Frame) => VarType::Frame,
+            Some(DataType::Real) | None => VarType::Real,
+        }
+    }
+}
+
+impl VarType {
     /// The value a variable starts with: LUD variables start at the zero of their type (reference §8.1,
     /// §17.1): 0, FALSE, the empty string. What an AXIS variable holds before its first assignment is
     /// not documented, and frames are not followed, so those start unknown.

@@ -3,7 +3,7 @@
 //! `SAVE`, the modal call `MCALL`, the return by `M17`/`RET`/end of file, and the level limit.
 
 use crate::analysis::engine::Engine;
-use crate::analysis::eval::{evaluate, Value, VarType, Variables};
+use crate::analysis::eval::{element_indexes, evaluate, Value, VarType, Variables};
 use crate::analysis::execution::interpreter::{Interpreter, Next};
 use crate::analysis::execution::paths::{
     Activation, Argument, CallFrame, Control, ModalCall, SavedModal,
@@ -11,9 +11,7 @@ use crate::analysis::execution::paths::{
 use crate::analysis::execution::program::ProgramUnit;
 use crate::analysis::execution::{CallSite, ProgramEnd};
 use crate::diagnostics::{Code, Span};
-use crate::syntax::ast::{
-    AddressKind, Block, CallKind, DataType, ExprId, ExprKind, Statement, ValueExpr,
-};
+use crate::syntax::ast::{AddressKind, Block, CallKind, ExprId, ExprKind, Statement, ValueExpr};
 use std::sync::Arc;
 
 /// A call about to be run.
@@ -310,15 +308,7 @@ impl<'a, 's> Interpreter<'a, 's> {
                             let default = parameter
                                 .default
                                 .and_then(|id| evaluate(&block, line, id, &empty).ok().flatten());
-                            let var_type = match parameter.data_type {
-                                Some(DataType::Int) => VarType::Int,
-                                Some(DataType::Bool) => VarType::Bool,
-                                Some(DataType::Char) => VarType::Char,
-                                Some(DataType::String) => VarType::Text,
-                                Some(DataType::Axis) => VarType::Axis,
-                                Some(DataType::Frame) => VarType::Frame,
-                                Some(DataType::Real) | None => VarType::Real,
-                            };
+                            let var_type = VarType::of_declared(parameter.data_type);
                             (name, parameter.by_reference, default, var_type)
                         })
                         .collect();
@@ -376,25 +366,19 @@ fn array_elements(variables: &Variables, name: &str) -> Option<ArrayValues> {
         return None;
     }
     let elements = (0..total)
-        .map(|position| variables.value(name, &indexes_of(position, &dimensions)))
+        .map(|position| variables.value(name, &element_indexes(position, &dimensions)))
         .collect();
     Some((dimensions, elements))
 }
 
 fn store_elements(variables: &mut Variables, name: &str, (dimensions, elements): &ArrayValues) {
     for (position, element) in elements.iter().enumerate() {
-        let _ = variables.assign(name, &indexes_of(position, dimensions), element.clone());
+        let _ = variables.assign(
+            name,
+            &element_indexes(position, dimensions),
+            element.clone(),
+        );
     }
-}
-
-/// The indexes of the `position`-th element, the last index counting fastest.
-fn indexes_of(mut position: usize, dimensions: &[usize]) -> Vec<usize> {
-    let mut indexes = vec![0; dimensions.len()];
-    for (slot, size) in indexes.iter_mut().zip(dimensions).rev() {
-        *slot = position % size;
-        position /= size;
-    }
-    indexes
 }
 
 /// The variable each argument names, when it is a plain variable or R parameter.

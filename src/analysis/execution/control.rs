@@ -3,7 +3,7 @@
 //! the way the control takes; an unknown one lets both ways run (see `Interpreter::fork`).
 
 use crate::analysis::engine::Engine;
-use crate::analysis::eval::{evaluate, Variables};
+use crate::analysis::eval::{evaluate, real_equal, real_less_equal, Variables};
 use crate::analysis::execution::interpreter::{mark_unknown_loop, Interpreter, Next};
 use crate::analysis::execution::paths::{Control, LoopFrame};
 use crate::analysis::execution::program::{Partner, ProgramUnit};
@@ -20,11 +20,6 @@ const ENDLESS_CHECK_INTERVAL: u32 = 1000;
 
 /// Section repetitions one program level follows inside each other.
 const MAX_NESTED_REPEATS: usize = 64;
-
-/// REAL values compare with a relative tolerance on the control (reference §18.1).
-fn real_equal(left: f64, right: f64) -> bool {
-    (left - right).abs() <= 1e-12 * left.abs().max(right.abs())
-}
 
 impl<'a, 's> Interpreter<'a, 's> {
     /// The value of a condition: `Some(true)` or `Some(false)` when the program determines it.
@@ -431,7 +426,7 @@ impl<'a, 's> Interpreter<'a, 's> {
                 .flatten()
         });
         let (counter, end_value) = (counter?, end_value?);
-        Some(counter < end_value || real_equal(counter, end_value))
+        Some(real_less_equal(counter, end_value))
     }
 
     /// The line a jump reaches; `Ok(None)` when it goes on with the next block (GOTOS without a
