@@ -18,9 +18,6 @@ use crate::syntax::jumps::{resolve_jump, JumpResolution};
 /// such interval before: equal states mean the loop never ends.
 const ENDLESS_CHECK_INTERVAL: u32 = 1000;
 
-/// Section repetitions one program level follows inside each other.
-const MAX_NESTED_REPEATS: usize = 64;
-
 impl<'a, 's> Interpreter<'a, 's> {
     /// The value of a condition: `Some(true)` or `Some(false)` when the program determines it.
     fn decide(
@@ -289,69 +286,6 @@ impl<'a, 's> Interpreter<'a, 's> {
             }
         }
         Next::Line(pc + 1)
-    }
-
-    /// Starts the repetitions of the lines `first..=last` (reference §17.7: the section has run once
-    /// already; it runs `P` more times, once when `P` is not written) and goes on after `pc`.
-    #[allow(clippy::too_many_arguments)]
-    fn repeat_section(
-        &mut self,
-        control: &mut Control,
-        engine: &Engine<'a>,
-        block: &Block,
-        line: &str,
-        pc: usize,
-        first: usize,
-        last: usize,
-        count: Option<ExprId>,
-        span: Span,
-    ) -> Next {
-        let repetitions = match count {
-            None => Some(1.0),
-            Some(id) => evaluate(block, line, id, &engine.state.variables)
-                .ok()
-                .flatten(),
-        };
-        let Some(repetitions) = repetitions.filter(|value| *value >= 0.0 && value.fract() == 0.0)
-        else {
-            self.report(
-                control,
-                pc,
-                Code::FlowNotFollowed,
-                span,
-                "how often this section repeats is not known statically: from here on the program is read in program order".to_string(),
-            );
-            control.level_mut().pc = pc + 1;
-            return Next::LoseTrack;
-        };
-        if repetitions < 1.0 || last < first {
-            return Next::Line(pc + 1);
-        }
-        // A section that contains its own REPEAT block would start itself again on every pass, and
-        // sections nested without end cannot be followed: the rest is read in program order.
-        let level = control.level();
-        if (first..=last).contains(&pc) || level.repeats.len() >= MAX_NESTED_REPEATS {
-            self.report(
-                control,
-                pc,
-                Code::FlowNotFollowed,
-                span,
-                "this section repetition contains its own REPEAT block or is nested too deeply to follow: from here on the program is read in program order".to_string(),
-            );
-            control.level_mut().pc = pc + 1;
-            return Next::LoseTrack;
-        }
-        control
-            .level_mut()
-            .repeats
-            .push(crate::analysis::execution::paths::RepeatFrame {
-                start: first,
-                end: last,
-                remaining: repetitions.min(u32::MAX as f64) as u32,
-                return_to: pc + 1,
-            });
-        control.level_mut().pc = first;
-        Next::Moved
     }
 
     /// A condition the program does not determine: an information finding, once per line.

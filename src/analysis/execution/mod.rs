@@ -10,11 +10,13 @@
 //! becomes unknown. A budget of executed blocks bounds the work; past it the rest of the program is
 //! read in program order, as values that are uncertain.
 
+mod assumptions;
 mod calls;
 mod control;
 mod interpreter;
 mod paths;
 pub mod program;
+mod repeats;
 
 use crate::analysis::library::ProgramLibrary;
 use crate::analysis::{Move, ProgramKind};
@@ -159,7 +161,7 @@ pub fn entry_assumptions(
     if !subprogram || options.entry != EntryState::Reset {
         return Vec::new();
     }
-    interpreter::reset_assumptions(config)
+    assumptions::reset_assumptions(config)
         .into_iter()
         .map(|(_, name, value)| (name, value))
         .collect()
