@@ -278,7 +278,7 @@ impl<'a, 's> Interpreter<'a, 's> {
                     return self.end_level(control, engine, ProgramEnd::Return)
                 }
                 Statement::Address(word) => {
-                    if let Some(end) = ends_program(line, block, word) {
+                    if let Some(end) = ends_program(word) {
                         return self.end_level(control, engine, end);
                     }
                 }

@@ -22,7 +22,7 @@ use crate::analysis::library::ProgramLibrary;
 use crate::analysis::{Move, ProgramKind};
 use crate::config::MachineConfig;
 use crate::diagnostics::LineDiagnostic;
-use crate::syntax::ast::{AddressKind, AddressWord, Block, ValueExpr};
+use crate::syntax::ast::{AddressKind, AddressWord, ValueExpr};
 use std::sync::Arc;
 
 pub use crate::config::execution::{EntryState, ExecutionOptions};
@@ -99,9 +99,8 @@ pub enum ProgramEnd {
     End,
 }
 
-/// Whether the address word `word` of `block` is M2, M30 or M17.
-pub fn ends_program(line: &str, block: &Block, word: &AddressWord) -> Option<ProgramEnd> {
-    let _ = block;
+/// Whether the address word `word` is M2, M30 or M17 (written as a constant).
+pub fn ends_program(word: &AddressWord) -> Option<ProgramEnd> {
     if word.kind != AddressKind::MFunction || word.extension.is_some() {
         return None;
     }
@@ -109,7 +108,6 @@ pub fn ends_program(line: &str, block: &Block, word: &AddressWord) -> Option<Pro
         ValueExpr::Constant { value, .. } => value,
         _ => return None,
     };
-    let _ = line;
     if value == 17.0 {
         Some(ProgramEnd::Return)
     } else if value == 2.0 || value == 30.0 {

@@ -163,12 +163,7 @@ impl ProgramUnit {
                     | Statement::Return { .. }
                     | Statement::Instruction { .. } => flow.has_flow = true,
                     Statement::Address(word) if index != last_line => {
-                        flow.has_flow |= crate::analysis::execution::ends_program(
-                            self.line(index),
-                            &block,
-                            word,
-                        )
-                        .is_some();
+                        flow.has_flow |= crate::analysis::execution::ends_program(word).is_some();
                     }
                     _ => {}
                 }
