@@ -6,6 +6,7 @@ use crate::analysis::engine::{Engine, EngineSnapshot};
 use crate::analysis::execution::assumptions::reset_assumptions;
 use crate::analysis::execution::paths::{Activation, Control, UnknownLoop, Way};
 use crate::analysis::execution::program::ProgramUnit;
+use crate::analysis::execution::resume::Recorder;
 use crate::analysis::execution::{
     EntryState, ExecutedMove, Execution, ExecutionOptions, ProgramEnd,
 };
@@ -45,7 +46,7 @@ pub struct Interpreter<'a, 's> {
     /// Lookups of programs by name, misses included.
     pub(super) unit_names: HashMap<String, Option<usize>>,
     /// Per program, per line: how often the line was executed.
-    passes: Vec<Vec<u32>>,
+    pub(super) passes: Vec<Vec<u32>>,
     parser: LineParser,
     block: Block,
     /// Where the moves go, in the order the control executes them.
@@ -56,13 +57,16 @@ pub struct Interpreter<'a, 's> {
     pass_totals: Option<Vec<Vec<u32>>>,
     /// The run only counts passes: no move is built.
     counting: bool,
-    findings: Vec<LineDiagnostic>,
-    reported: HashSet<(usize, Code)>,
-    executed: u64,
+    pub(super) findings: Vec<LineDiagnostic>,
+    pub(super) reported: HashSet<(usize, Code)>,
+    pub(super) executed: u64,
     /// The ways that wait, in no particular order.
     pending: Vec<Way>,
     pub(super) next_fork: u32,
-    assumed: Vec<(&'static str, String)>,
+    pub(super) assumed: Vec<(&'static str, String)>,
+    /// Checkpoints, pass records and the place to rejoin an earlier run, when the run is recorded
+    /// for running again after an edit (`resume.rs`).
+    pub(super) recorder: Option<Recorder<'a>>,
     /// States seen at the heads of long concrete loops, to find loops whose state never changes.
     pub(super) loop_heads: HashMap<(usize, usize, usize), EngineSnapshot>,
     scratch: Vec<Diagnostic>,
@@ -93,6 +97,7 @@ impl<'a, 's> Interpreter<'a, 's> {
             pending: Vec::new(),
             next_fork: 0,
             assumed: Vec::new(),
+            recorder: None,
             loop_heads: HashMap::new(),
             scratch: Vec::new(),
         }
@@ -118,6 +123,18 @@ impl<'a, 's> Interpreter<'a, 's> {
 
     /// Runs the program `main` (read once, shared by the runs of one execution).
     pub fn run_unit(mut self, main: Arc<ProgramUnit>, kind: ProgramKind) -> Execution {
+        let start = self.start(main, kind);
+        self.run_from(start);
+        self.finish()
+    }
+
+    /// Makes `main` the analysed program and gives the way at its first block, with the assumed
+    /// entry state of a subprogram.
+    pub(super) fn start(
+        &mut self,
+        main: Arc<ProgramUnit>,
+        kind: ProgramKind,
+    ) -> (Control, Engine<'a>) {
         let subprogram = kind == ProgramKind::Subprogram || main.has_proc_header();
         self.passes.push(vec![0; main.line_count()]);
         self.units.push(main);
@@ -142,7 +159,13 @@ impl<'a, 's> Interpreter<'a, 's> {
                 EntryState::Unknown => engine.assume_inherited_state(),
             }
         }
-        let mut current = Some((control, engine));
+        (control, engine)
+    }
+
+    /// Runs the way `start` and every way it forks until all have ended, the track is lost, or a
+    /// resumed run rejoins its earlier run.
+    pub(super) fn run_from(&mut self, start: (Control, Engine<'a>)) -> RunEnd {
+        let mut current = Some(start);
         loop {
             let (mut control, mut engine) = match current.take() {
                 Some(way) => way,
@@ -151,7 +174,7 @@ impl<'a, 's> Interpreter<'a, 's> {
                         let engine = self.engine_from(way.engine);
                         (way.control, engine)
                     }
-                    None => break,
+                    None => return RunEnd::Finished,
                 },
             };
             match self.run_way(&mut control, &mut engine) {
@@ -159,11 +182,11 @@ impl<'a, 's> Interpreter<'a, 's> {
                 WayEnd::LostTrack => {
                     self.read_rest_in_order(&control, engine);
                     self.pending.clear();
-                    break;
+                    return RunEnd::LostTrack;
                 }
+                WayEnd::Rejoined(checkpoint) => return RunEnd::Rejoined(checkpoint),
             }
         }
-        self.finish()
     }
 
     fn take_first_pending(&mut self) -> Option<Way> {
@@ -203,6 +226,11 @@ impl<'a, 's> Interpreter<'a, 's> {
                     ),
                 );
                 return WayEnd::LostTrack;
+            }
+            if self.recorder.is_some() && self.pending.is_empty() && control.is_simple() {
+                if let Some(checkpoint) = self.at_simple_point(control, engine) {
+                    return WayEnd::Rejoined(checkpoint);
+                }
             }
             match self.step(control, engine) {
                 Next::Line(line) => control.level_mut().pc = line,
@@ -306,6 +334,15 @@ impl<'a, 's> Interpreter<'a, 's> {
         }
         let mut block = std::mem::take(&mut self.block);
         unit.parse(&mut self.parser, pc, &mut block);
+        if let Some(recorder) = self.recorder.as_mut() {
+            recorder.executing(
+                unit_index,
+                pc,
+                unit.line_count(),
+                self.executed,
+                self.passes[unit_index][pc],
+            );
+        }
         self.executed += 1;
         self.passes[unit_index][pc] += 1;
         let line = unit.line(pc);
@@ -384,6 +421,9 @@ impl<'a, 's> Interpreter<'a, 's> {
             conditional: !control.forks.is_empty(),
             assumed,
         });
+        if let Some(recorder) = self.recorder.as_mut() {
+            recorder.emitted += 1;
+        }
     }
 
     /// The line of the analysed program where the way is: its own line, or the outermost call.
@@ -458,6 +498,9 @@ impl<'a, 's> Interpreter<'a, 's> {
                     conditional: false,
                     assumed: Vec::new(),
                 });
+                if let Some(recorder) = self.recorder.as_mut() {
+                    recorder.emitted += 1;
+                }
             }
         }
         self.block = block;
@@ -466,6 +509,11 @@ impl<'a, 's> Interpreter<'a, 's> {
     /// The pass number of the execution of `line` of `unit` just counted: 0 when the block runs once
     /// in the whole run.
     fn pass_of(&self, unit: usize, line: usize) -> u32 {
+        // A recorded run keeps every pass number: whether a block runs more than once is known only
+        // at its end (`resume.rs` hides the pass of a block that ran once).
+        if self.recorder.is_some() {
+            return self.passes[unit][line];
+        }
         let total = self
             .pass_totals
             .as_ref()
@@ -490,7 +538,7 @@ impl<'a, 's> Interpreter<'a, 's> {
         self
     }
 
-    fn finish(mut self) -> Execution {
+    pub(super) fn finish(mut self) -> Execution {
         self.findings
             .sort_by_key(|item| (item.line, item.diagnostic.span.start()));
         Execution {
@@ -506,6 +554,19 @@ impl<'a, 's> Interpreter<'a, 's> {
 enum WayEnd {
     Stopped,
     LostTrack,
+    /// A resumed run reached the state of its earlier run at that run's checkpoint (its index).
+    Rejoined(usize),
+}
+
+/// How a run ended.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(super) enum RunEnd {
+    Finished,
+    /// The rest of the program was read in program order (a budget ran out).
+    LostTrack,
+    /// A resumed run reached the state of its earlier run at that run's checkpoint (its index): the
+    /// rest is the earlier run's.
+    Rejoined(usize),
 }
 
 /// Marks the loop `head..=end` of level `depth` as one whose number of passes is not known.

@@ -16,7 +16,9 @@ mod control;
 mod interpreter;
 mod paths;
 pub mod program;
+mod recorded;
 mod repeats;
+mod resume;
 
 use crate::analysis::library::ProgramLibrary;
 use crate::analysis::{Move, ProgramKind};
@@ -26,6 +28,7 @@ use crate::syntax::ast::{AddressKind, AddressWord, ValueExpr};
 use std::sync::Arc;
 
 pub use crate::config::execution::{EntryState, ExecutionOptions};
+pub use recorded::{run_recorded, RecordedRun, RunStart};
 
 /// Where a called program was called from.
 #[derive(Debug, Clone, PartialEq, Eq)]

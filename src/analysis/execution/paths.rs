@@ -150,6 +150,25 @@ impl Control {
             .expect("a way has at least its main level")
     }
 
+    /// Whether the way is on the main level, depends on no undecided condition and is in no loop
+    /// of unknown passes: a state from which a run can be resumed (`resume.rs`).
+    pub fn is_simple(&self) -> bool {
+        self.levels.len() == 1 && self.forks.is_empty() && self.unknown_loops.is_empty()
+    }
+
+    /// Forgets the undecided-condition numbers kept at labels and loops of a simple way. They only
+    /// tell whether a later condition was met during a pass, and every later condition has a higher
+    /// number than all of them, so forgetting them changes no decision; it keeps the states that a
+    /// resumed run compares small and equal.
+    pub fn forget_condition_marks(&mut self) {
+        for level in &mut self.levels {
+            level.label_marks.clear();
+            for frame in &mut level.loops {
+                frame.fork_mark = 0;
+            }
+        }
+    }
+
     /// Whether the way lies inside a loop whose passes are not known, where moves are not shown
     /// again (its first pass was shown).
     pub fn widening(&self) -> bool {

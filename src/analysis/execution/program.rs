@@ -97,6 +97,52 @@ impl ProgramUnit {
         unit
     }
 
+    /// The program `text`, which differs from `earlier` only in lines where [`Self::same_flow`]
+    /// holds: the flow index and the macros of `earlier` are its own.
+    pub fn with_flow_of(earlier: &ProgramUnit, text: Arc<str>) -> ProgramUnit {
+        let lines: Vec<(u32, u32)> = lines::line_ranges(&text)
+            .map(|(start, end)| (start as u32, end as u32))
+            .collect();
+        ProgramUnit {
+            name: earlier.name.clone(),
+            path: earlier.path.clone(),
+            text,
+            lines,
+            flow: earlier.flow.clone(),
+            context: earlier.context.clone(),
+        }
+    }
+
+    /// Whether line `index` of this program and line `other_index` of `other` play the same part
+    /// in the program's flow: both are blocks of G functions, addresses (no program end) and
+    /// assignments only, with the same label and block number. Their values may differ.
+    pub fn same_flow(
+        &self,
+        index: usize,
+        other: &ProgramUnit,
+        other_index: usize,
+        parser: &mut LineParser,
+    ) -> bool {
+        let mut mine = Block::default();
+        let mut theirs = Block::default();
+        self.parse(parser, index, &mut mine);
+        other.parse(parser, other_index, &mut theirs);
+        let label = |unit: &ProgramUnit, line: usize, block: &Block| {
+            block
+                .label
+                .map(|label| unit.line(line)[label.start()..label.end()].to_ascii_uppercase())
+        };
+        plain_block(&mine)
+            && plain_block(&theirs)
+            && mine.number.map(|number| number.value) == theirs.number.map(|number| number.value)
+            && label(self, index, &mine) == label(other, other_index, &theirs)
+    }
+
+    /// The text of the whole program.
+    pub fn text(&self) -> &Arc<str> {
+        &self.text
+    }
+
     /// Whether the program is a subprogram by its `PROC` line.
     pub fn has_proc_header(&self) -> bool {
         crate::analysis::has_proc_header(&self.text)
@@ -184,6 +230,18 @@ impl ProgramUnit {
         }
         flow
     }
+}
+
+/// Whether a block has nothing the interpreter treats as flow: only G functions, addresses that do
+/// not end the program, and assignments, without synchronized actions.
+fn plain_block(block: &Block) -> bool {
+    block.sync_actions_from.is_none()
+        && block.statements.iter().all(|statement| match statement {
+            Statement::GCode { .. } | Statement::UnknownGCode { .. } => true,
+            Statement::Assignment { .. } => true,
+            Statement::Address(word) => crate::analysis::execution::ends_program(word).is_none(),
+            _ => false,
+        })
 }
 
 /// Records the partners of a structure keyword on `line`; false when the nesting is broken.

@@ -1,0 +1,380 @@
+//! Recording a run so that it can be run again after an edit without starting from the first block.
+//!
+//! A recorded run keeps checkpoints: the whole state of the interpreter at blocks where a single way
+//! runs on the main level (no waiting way, no undecided condition, no loop of unknown passes), every
+//! few thousand executed blocks. It also keeps, per line of the analysed program, when the line ran
+//! first and last, and per interval between checkpoints, how often each line ran in it.
+//!
+//! After an edit that leaves the program's flow as it was (`again.rs` decides), the new run starts
+//! at the last checkpoint before the first execution of an edited line. At every later simple state
+//! it looks for a checkpoint of the earlier run at the same place with the same state, after which
+//! the earlier run never executed an edited line and before which both runs executed every line
+//! equally often: from there the earlier run's moves, findings and checkpoints are the new run's.
+
+use crate::analysis::engine::{Engine, EngineSnapshot};
+use crate::analysis::execution::interpreter::Interpreter;
+use crate::analysis::execution::paths::Control;
+use crate::analysis::execution::program::ProgramUnit;
+use crate::diagnostics::{Code, LineDiagnostic};
+use std::collections::{HashMap, HashSet};
+use std::sync::Arc;
+
+/// A line that did not run.
+pub(super) const NEVER: u64 = u64::MAX;
+
+/// Executed blocks between two checkpoints at first; the interval doubles when the checkpoints hold
+/// too much.
+const FIRST_INTERVAL: u64 = 1024;
+
+/// How many entries (counters, marks, pass records) the checkpoints of one run may hold before every
+/// other one is dropped: about 16 bytes each.
+const MAX_STORED_ENTRIES: usize = 1 << 21;
+
+/// How often each line ran in an interval: (program, line, count).
+pub(super) type PassDelta = Vec<(u32, u32, u32)>;
+
+/// The state of a run before the block numbered `executed`.
+#[derive(Debug, Clone)]
+pub(super) struct Checkpoint {
+    pub executed: u64,
+    /// Moves made and findings reported before it.
+    pub moves: usize,
+    pub findings: usize,
+    pub next_fork: u32,
+    pub control: Control,
+    pub engine: EngineSnapshot,
+    pub loop_heads: HashMap<(usize, usize, usize), EngineSnapshot>,
+    /// How often each line ran since the previous checkpoint.
+    pub delta: PassDelta,
+}
+
+impl Checkpoint {
+    fn size(&self) -> usize {
+        let levels: usize = self
+            .control
+            .levels
+            .iter()
+            .map(|level| level.jump_passes.len() + level.label_marks.len() + level.loops.len())
+            .sum();
+        1 + levels + self.delta.len() + self.loop_heads.len()
+    }
+
+    /// The main program's line where the way goes on.
+    pub fn line(&self) -> usize {
+        self.control.levels[0].pc
+    }
+}
+
+/// Where a resumed run may rejoin its earlier run.
+pub(super) struct Rejoin<'a> {
+    pub earlier: &'a [Arc<Checkpoint>],
+    pub earlier_findings: &'a [LineDiagnostic],
+    pub earlier_executed: u64,
+    /// The earlier checkpoints by their line.
+    pub by_line: HashMap<usize, Vec<usize>>,
+    /// The earlier checkpoint the run was resumed from.
+    pub resumed_from: usize,
+    /// Lines that ran since the resume, with their count before it.
+    since_resume: Vec<(u32, u32, u32)>,
+    since_resume_seen: Vec<Vec<bool>>,
+}
+
+impl<'a> Rejoin<'a> {
+    pub fn new(
+        earlier: &'a [Arc<Checkpoint>],
+        earlier_findings: &'a [LineDiagnostic],
+        earlier_executed: u64,
+        resumed_from: usize,
+        last_edited_run: u64,
+    ) -> Rejoin<'a> {
+        let mut by_line: HashMap<usize, Vec<usize>> = HashMap::new();
+        for (index, checkpoint) in earlier.iter().enumerate().skip(resumed_from + 1) {
+            if checkpoint.executed > last_edited_run {
+                by_line.entry(checkpoint.line()).or_default().push(index);
+            }
+        }
+        Rejoin {
+            earlier,
+            earlier_findings,
+            earlier_executed,
+            by_line,
+            resumed_from,
+            since_resume: Vec::new(),
+            since_resume_seen: Vec::new(),
+        }
+    }
+}
+
+/// What a recorded run keeps besides its moves.
+pub(super) struct Recorder<'a> {
+    pub checkpoints: Vec<Arc<Checkpoint>>,
+    pub interval: u64,
+    stored: usize,
+    /// Lines that ran since the last checkpoint, with their count before it.
+    touched: Vec<(u32, u32, u32)>,
+    /// Per program, per line: the interval (its number + 1) in which the line last ran.
+    marks: Vec<Vec<u32>>,
+    interval_number: u32,
+    /// Per line of the analysed program: the number of the block execution that ran it first and
+    /// last ([`NEVER`] when it did not run).
+    pub first_run: Vec<u64>,
+    pub last_run: Vec<u64>,
+    /// Moves made so far.
+    pub emitted: usize,
+    pub rejoin: Option<Rejoin<'a>>,
+}
+
+impl<'a> Recorder<'a> {
+    pub fn new(main_lines: usize) -> Recorder<'a> {
+        Recorder {
+            checkpoints: Vec::new(),
+            interval: FIRST_INTERVAL,
+            stored: 0,
+            touched: Vec::new(),
+            marks: Vec::new(),
+            interval_number: 0,
+            first_run: vec![NEVER; main_lines],
+            last_run: vec![NEVER; main_lines],
+            emitted: 0,
+            rejoin: None,
+        }
+    }
+
+    /// Continues the record of an earlier run from its checkpoint `checkpoints.last()`.
+    pub fn resumed(
+        checkpoints: Vec<Arc<Checkpoint>>,
+        first_run: Vec<u64>,
+        last_run: Vec<u64>,
+        emitted: usize,
+        interval: u64,
+        rejoin: Rejoin<'a>,
+    ) -> Recorder<'a> {
+        let stored = checkpoints.iter().map(|checkpoint| checkpoint.size()).sum();
+        Recorder {
+            checkpoints,
+            interval,
+            stored,
+            touched: Vec::new(),
+            marks: Vec::new(),
+            interval_number: 0,
+            first_run,
+            last_run,
+            emitted,
+            rejoin: Some(rejoin),
+        }
+    }
+
+    /// Notes that line `line` of program `unit` (of `lines` lines) runs as block execution `time`,
+    /// after `before` earlier executions.
+    pub fn executing(&mut self, unit: usize, line: usize, lines: usize, time: u64, before: u32) {
+        if unit == 0 {
+            if let Some(first) = self.first_run.get_mut(line) {
+                if *first == NEVER {
+                    *first = time;
+                }
+                self.last_run[line] = time;
+            }
+        }
+        while self.marks.len() <= unit {
+            self.marks.push(Vec::new());
+        }
+        let marks = &mut self.marks[unit];
+        if marks.len() < lines {
+            marks.resize(lines, 0);
+        }
+        if let Some(mark) = marks.get_mut(line) {
+            if *mark != self.interval_number + 1 {
+                *mark = self.interval_number + 1;
+                self.touched.push((unit as u32, line as u32, before));
+            }
+        }
+        if let Some(rejoin) = self.rejoin.as_mut() {
+            while rejoin.since_resume_seen.len() <= unit {
+                rejoin.since_resume_seen.push(Vec::new());
+            }
+            let seen = &mut rejoin.since_resume_seen[unit];
+            if seen.len() < lines {
+                seen.resize(lines, false);
+            }
+            if let Some(seen) = seen.get_mut(line) {
+                if !*seen {
+                    *seen = true;
+                    rejoin.since_resume.push((unit as u32, line as u32, before));
+                }
+            }
+        }
+    }
+
+    /// How often each line ran since the last checkpoint; starts the next interval.
+    fn take_delta(&mut self, passes: &[Vec<u32>]) -> PassDelta {
+        self.interval_number += 1;
+        self.touched
+            .drain(..)
+            .map(|(unit, line, before)| {
+                let now = passes[unit as usize][line as usize];
+                (unit, line, now - before)
+            })
+            .collect()
+    }
+
+    fn due(&self, executed: u64) -> bool {
+        match self.checkpoints.last() {
+            None => true,
+            Some(last) => executed >= last.executed + self.interval,
+        }
+    }
+
+    fn push(&mut self, checkpoint: Checkpoint) {
+        self.stored += checkpoint.size();
+        self.checkpoints.push(Arc::new(checkpoint));
+        if self.stored > MAX_STORED_ENTRIES {
+            self.thin_out();
+        }
+    }
+
+    /// Drops every other checkpoint (the first and the last stay) and doubles the interval, so that
+    /// the checkpoints of a long run hold a bounded amount.
+    fn thin_out(&mut self) {
+        let count = self.checkpoints.len();
+        let mut kept: Vec<Arc<Checkpoint>> = Vec::with_capacity(count / 2 + 2);
+        let mut carried: PassDelta = Vec::new();
+        for (index, checkpoint) in self.checkpoints.drain(..).enumerate() {
+            let keep = index == 0 || index + 1 == count || index % 2 == 0;
+            if keep {
+                if carried.is_empty() {
+                    kept.push(checkpoint);
+                } else {
+                    let mut merged = (*checkpoint).clone();
+                    carried.append(&mut merged.delta);
+                    merged.delta = std::mem::take(&mut carried);
+                    kept.push(Arc::new(merged));
+                }
+            } else {
+                carried.extend_from_slice(&checkpoint.delta);
+            }
+        }
+        self.checkpoints = kept;
+        self.stored = self
+            .checkpoints
+            .iter()
+            .map(|checkpoint| checkpoint.size())
+            .sum();
+        self.interval *= 2;
+    }
+}
+
+impl<'a> Interpreter<'a, '_> {
+    /// At a block where one way runs on the main level: rejoins the earlier run when its state is
+    /// reached again (the index of its checkpoint), else takes a checkpoint when one is due.
+    pub(super) fn at_simple_point(
+        &mut self,
+        control: &mut Control,
+        engine: &Engine<'a>,
+    ) -> Option<usize> {
+        control.forget_condition_marks();
+        if let Some(index) = self.rejoin_point(control, engine) {
+            return Some(index);
+        }
+        let recorder = self.recorder.as_mut()?;
+        if !recorder.due(self.executed) {
+            return None;
+        }
+        let delta = recorder.take_delta(&self.passes);
+        let checkpoint = Checkpoint {
+            executed: self.executed,
+            moves: recorder.emitted,
+            findings: self.findings.len(),
+            next_fork: self.next_fork,
+            control: control.clone(),
+            engine: engine.snapshot(),
+            loop_heads: self.loop_heads.clone(),
+            delta,
+        };
+        recorder.push(checkpoint);
+        None
+    }
+
+    /// The earlier run's checkpoint whose state this run has reached, when the rest of the earlier
+    /// run is the rest of this one.
+    fn rejoin_point(&self, control: &Control, engine: &Engine<'a>) -> Option<usize> {
+        let rejoin = self.recorder.as_ref()?.rejoin.as_ref()?;
+        let candidates = rejoin.by_line.get(&control.level().pc)?;
+        let mut snapshot = None;
+        for &index in candidates {
+            let checkpoint = &rejoin.earlier[index];
+            let rest = rejoin.earlier_executed - checkpoint.executed;
+            if checkpoint.next_fork != self.next_fork
+                || self.executed.saturating_add(rest) > self.options.max_blocks
+                || checkpoint.control != *control
+                || checkpoint.loop_heads != self.loop_heads
+            {
+                continue;
+            }
+            let snapshot = snapshot.get_or_insert_with(|| engine.snapshot());
+            if checkpoint.engine != *snapshot
+                || !self.same_findings_since_resume(rejoin, checkpoint)
+                || !self.same_passes_since_resume(rejoin, index)
+            {
+                continue;
+            }
+            return Some(index);
+        }
+        None
+    }
+
+    /// Whether this run reported the same findings (by line and code) since the resume as the
+    /// earlier run up to `checkpoint`: the findings of the rest are reported once per line and code.
+    fn same_findings_since_resume(&self, rejoin: &Rejoin, checkpoint: &Checkpoint) -> bool {
+        let start = rejoin.earlier[rejoin.resumed_from].findings;
+        let keys = |findings: &[LineDiagnostic]| -> HashSet<(usize, Code)> {
+            findings
+                .iter()
+                .map(|finding| (finding.line, finding.diagnostic.code))
+                .collect()
+        };
+        let earlier = rejoin
+            .earlier_findings
+            .get(start..checkpoint.findings)
+            .unwrap_or(&[]);
+        let now = self.findings.get(start..).unwrap_or(&[]);
+        earlier.len() == now.len() && keys(earlier) == keys(now)
+    }
+
+    /// Whether every line ran as often since the resume as in the earlier run up to checkpoint
+    /// `index`: then every later pass number is the same.
+    fn same_passes_since_resume(&self, rejoin: &Rejoin, index: usize) -> bool {
+        let mut earlier: HashMap<(u32, u32), u32> = HashMap::new();
+        for checkpoint in &rejoin.earlier[rejoin.resumed_from + 1..=index] {
+            for &(unit, line, count) in &checkpoint.delta {
+                *earlier.entry((unit, line)).or_default() += count;
+            }
+        }
+        for &(unit, line, before) in &rejoin.since_resume {
+            let count = self.passes[unit as usize][line as usize] - before;
+            match earlier.remove(&(unit, line)) {
+                Some(earlier_count) if earlier_count == count => {}
+                None if count == 0 => {}
+                _ => return false,
+            }
+        }
+        earlier.values().all(|&count| count == 0)
+    }
+
+    /// The record of this run, once it ended.
+    pub(super) fn take_record(&mut self) -> (Recorder<'a>, PassDelta) {
+        let mut recorder = self.recorder.take().unwrap_or_else(|| Recorder::new(0));
+        let tail = recorder.take_delta(&self.passes);
+        (recorder, tail)
+    }
+}
+
+/// The programs of a run and what they are called, as the run found them.
+pub(super) fn unit_paths(units: &[Arc<ProgramUnit>]) -> HashMap<&str, usize> {
+    let mut paths = HashMap::new();
+    for (index, unit) in units.iter().enumerate() {
+        if let Some(path) = unit.path.as_deref() {
+            paths.entry(path).or_insert(index);
+        }
+    }
+    paths
+}
