@@ -4,6 +4,7 @@
 //! program) needs none of this: its moves are those of the document's analysis.
 
 use crate::analysis::document::LineSource;
+use crate::analysis::execution::library_macros::LibraryMacros;
 use crate::analysis::execution::{entry_assumptions, ExecutionOptions};
 use crate::analysis::execution::{execute, program::ProgramUnit, ExecutedMove, Execution};
 use crate::analysis::library::ProgramLibrary;
@@ -48,7 +49,15 @@ pub fn execute_document(
     let text: Arc<str> = Arc::from(text);
     let subprogram = kind == ProgramKind::Subprogram || crate::analysis::has_proc_header(&text);
     if !subprogram {
-        let unit = ProgramUnit::new(String::new(), None, Arc::clone(&text), config);
+        // A macro of a definition file reads like a call: a program that uses one runs.
+        let macros = LibraryMacros::read(library, config);
+        let unit = ProgramUnit::with_macro_names(
+            String::new(),
+            None,
+            Arc::clone(&text),
+            config,
+            macros.names(),
+        );
         if !unit.flow.has_flow {
             return DocumentExecution::InOrder;
         }

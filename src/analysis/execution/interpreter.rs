@@ -4,6 +4,7 @@
 
 use crate::analysis::engine::{Engine, EngineSnapshot};
 use crate::analysis::execution::assumptions::reset_assumptions;
+use crate::analysis::execution::library_macros::LibraryMacros;
 use crate::analysis::execution::paths::{Activation, Control, UnknownLoop, Way};
 use crate::analysis::execution::program::ProgramUnit;
 use crate::analysis::execution::{
@@ -66,6 +67,8 @@ pub struct Interpreter<'a, 's> {
     /// States seen at the heads of long concrete loops, to find loops whose state never changes.
     pub(super) loop_heads: HashMap<(usize, usize, usize), EngineSnapshot>,
     scratch: Vec<Diagnostic>,
+    /// The macros of the library's definition files, read when the run starts.
+    pub(super) library_macros: Option<Arc<LibraryMacros>>,
 }
 
 impl<'a, 's> Interpreter<'a, 's> {
@@ -95,6 +98,7 @@ impl<'a, 's> Interpreter<'a, 's> {
             assumed: Vec::new(),
             loop_heads: HashMap::new(),
             scratch: Vec::new(),
+            library_macros: None,
         }
     }
 
@@ -111,8 +115,15 @@ impl<'a, 's> Interpreter<'a, 's> {
     }
 
     /// Runs the program `text` from its first block to its end.
-    pub fn run(self, text: Arc<str>, kind: ProgramKind) -> Execution {
-        let main = Arc::new(ProgramUnit::new(String::new(), None, text, self.config));
+    pub fn run(mut self, text: Arc<str>, kind: ProgramKind) -> Execution {
+        let macros = self.library_macros();
+        let main = Arc::new(ProgramUnit::with_macro_names(
+            String::new(),
+            None,
+            text,
+            self.config,
+            macros.names(),
+        ));
         self.run_unit(main, kind)
     }
 
@@ -123,6 +134,7 @@ impl<'a, 's> Interpreter<'a, 's> {
         self.units.push(main);
         let mut engine = Engine::new(self.config);
         engine.set_executing(true);
+        engine.define_library_macros(&self.library_macros().definitions);
         let mut control = Control {
             levels: vec![Activation::main(0)],
             forks: Vec::new(),

@@ -14,6 +14,7 @@ mod assumptions;
 mod calls;
 mod control;
 mod interpreter;
+pub mod library_macros;
 mod paths;
 pub mod program;
 mod repeats;
@@ -129,20 +130,26 @@ pub fn execute(
     options: &ExecutionOptions,
     visit: &mut dyn FnMut(ExecutedMove),
 ) -> Execution {
-    let main = Arc::new(program::ProgramUnit::new(
+    let macros = Arc::new(library_macros::LibraryMacros::read(library, config));
+    let main = Arc::new(program::ProgramUnit::with_macro_names(
         String::new(),
         None,
         Arc::from(text),
         config,
+        macros.names(),
     ));
     if !main.flow.has_flow {
-        return interpreter::Interpreter::new(config, library, options, visit).run_unit(main, kind);
+        return interpreter::Interpreter::new(config, library, options, visit)
+            .with_library_macros(macros)
+            .run_unit(main, kind);
     }
     let mut ignore = |_: ExecutedMove| {};
     let counted = interpreter::Interpreter::new(config, library, options, &mut ignore)
+        .with_library_macros(Arc::clone(&macros))
         .counting_only()
         .run_unit(Arc::clone(&main), kind);
     interpreter::Interpreter::new(config, library, options, visit)
+        .with_library_macros(macros)
         .with_pass_totals(counted.pass_totals)
         .run_unit(main, kind)
 }
