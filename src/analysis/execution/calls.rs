@@ -27,6 +27,13 @@ pub(super) struct PendingCall {
     span: Span,
 }
 
+impl PendingCall {
+    /// The program the call runs, by its index among the run's programs.
+    pub(super) fn unit(&self) -> usize {
+        self.unit
+    }
+}
+
 /// What a subprogram's `PROC` line declares.
 #[derive(Debug, Clone, Default, PartialEq)]
 pub(super) struct ProcInfo {

@@ -4,6 +4,8 @@
 
 use crate::analysis::engine::{Engine, EngineSnapshot};
 use crate::analysis::execution::assumptions::reset_assumptions;
+use crate::analysis::execution::entry::RunSetup;
+use crate::analysis::execution::first_pass::FirstPasses;
 use crate::analysis::execution::library_macros::LibraryMacros;
 use crate::analysis::execution::paths::{Activation, Control, UnknownLoop, Way};
 use crate::analysis::execution::program::ProgramUnit;
@@ -63,12 +65,16 @@ pub struct Interpreter<'a, 's> {
     /// The ways that wait, in no particular order.
     pending: Vec<Way>,
     pub(super) next_fork: u32,
-    assumed: Vec<(&'static str, String)>,
+    pub(super) assumed: Vec<(&'static str, String)>,
     /// States seen at the heads of long concrete loops, to find loops whose state never changes.
     pub(super) loop_heads: HashMap<(usize, usize, usize), EngineSnapshot>,
     scratch: Vec<Diagnostic>,
     /// The macros of the library's definition files, read when the run starts.
     pub(super) library_macros: Option<Arc<LibraryMacros>>,
+    /// The entry state from the call sites and whether first passes are recorded.
+    pub(super) setup: RunSetup,
+    /// The first passes of the analysed program's lines, when they are recorded.
+    pub(super) first_passes: Option<FirstPasses>,
 }
 
 impl<'a, 's> Interpreter<'a, 's> {
@@ -99,6 +105,8 @@ impl<'a, 's> Interpreter<'a, 's> {
             loop_heads: HashMap::new(),
             scratch: Vec::new(),
             library_macros: None,
+            setup: RunSetup::default(),
+            first_passes: None,
         }
     }
 
@@ -153,6 +161,7 @@ impl<'a, 's> Interpreter<'a, 's> {
                 }
                 EntryState::Unknown => engine.assume_inherited_state(),
             }
+            self.enter_from_callers(&mut control, &mut engine);
         }
         let mut current = Some((control, engine));
         loop {
@@ -329,6 +338,7 @@ impl<'a, 's> Interpreter<'a, 's> {
                 None => marks.push((pc, mark)),
             }
         }
+        self.first_pass_before(control, engine, unit_index);
         let retest = control.level().retest_for == Some(pc);
         let next = if retest {
             control.level_mut().retest_for = None;
@@ -345,6 +355,8 @@ impl<'a, 's> Interpreter<'a, 's> {
                 self.record_move(control, engine, unit_index, pc, line, &block);
             }
             let modal = self.modal_call_after(control, engine, &block, pc, moved);
+            let callee = call.as_ref().or(modal.as_ref()).map(|call| call.unit());
+            self.first_pass_after(control, engine, unit_index, pc, callee);
             match (call, modal) {
                 (Some(call), _) | (None, Some(call)) => {
                     control.level_mut().pc = pc + 1;
@@ -496,6 +508,23 @@ impl<'a, 's> Interpreter<'a, 's> {
         self
     }
 
+    /// Runs with the entry state from the call sites, recording first passes when asked.
+    pub fn with_setup(mut self, setup: RunSetup) -> Self {
+        if setup.record_first_passes && !self.counting {
+            self.first_passes = Some(FirstPasses::default());
+        }
+        self.setup = setup;
+        self
+    }
+
+    /// How often line `pc` of the analysed program has run so far.
+    pub(super) fn passes_so_far(&self, pc: usize) -> u32 {
+        self.passes
+            .first()
+            .and_then(|lines| lines.get(pc).copied())
+            .unwrap_or(0)
+    }
+
     /// Gives this run the pass counts of an earlier counting run of the same program.
     pub fn with_pass_totals(mut self, totals: Vec<Vec<u32>>) -> Self {
         self.pass_totals = Some(totals);
@@ -511,6 +540,7 @@ impl<'a, 's> Interpreter<'a, 's> {
             executed_blocks: self.executed,
             pass_totals: self.passes,
             has_flow: self.units.first().is_some_and(|unit| unit.flow.has_flow),
+            first_passes: self.first_passes.take(),
         }
     }
 }
