@@ -53,7 +53,7 @@ impl CallerEntry {
         for (index, field) in fields.iter().enumerate() {
             let value = field(first);
             let agreed = value.is_some() && sites.iter().all(|site| field(site) == value);
-            let code = value.as_deref().and_then(GCode::from_name);
+            let code = value.as_deref().and_then(code_named);
             match (agreed, code) {
                 (true, Some(code)) => groups.push(code),
                 // The first three decide: without them the reset state stays the assumption.
@@ -82,6 +82,14 @@ impl CallerEntry {
             format!("the {} call sites", self.call_sites)
         };
         format!("entry state from {sites} in {}", self.files.join(", "))
+    }
+}
+
+/// The G function written `name`: `G18` by its number, `DIAMOF` by its name.
+fn code_named(name: &str) -> Option<GCode> {
+    match name.strip_prefix(['G', 'g']).map(str::parse::<u32>) {
+        Some(Ok(number)) => GCode::from_number(number),
+        _ => GCode::from_name(name),
     }
 }
 
