@@ -540,7 +540,7 @@ impl<'a, 's> Interpreter<'a, 's> {
             executed_blocks: self.executed,
             pass_totals: self.passes,
             has_flow: self.units.first().is_some_and(|unit| unit.flow.has_flow),
-            first_passes: self.first_passes.take(),
+            first_passes: self.first_passes.take().map(Box::new),
         }
     }
 }

@@ -83,7 +83,7 @@ pub struct Execution {
     pub has_flow: bool,
     /// The first pass of each line of the analysed program, when the run was asked to record them
     /// ([`entry::RunSetup`]).
-    pub first_passes: Option<first_pass::FirstPasses>,
+    pub first_passes: Option<Box<first_pass::FirstPasses>>,
 }
 
 impl Execution {
