@@ -259,3 +259,59 @@ fn cycle_folders_must_exist() {
         "{missing_stderr}"
     );
 }
+
+#[test]
+fn macros_of_definition_files_in_the_folder_and_the_cycle_folders_are_expanded() {
+    let folder =
+        std::env::temp_dir().join(format!("sinumerik-preview-macros-{}", std::process::id()));
+    let parts = folder.join("parts");
+    let cycles = folder.join("cycles");
+    std::fs::create_dir_all(&parts).unwrap();
+    std::fs::create_dir_all(&cycles).unwrap();
+    let program = parts.join("MAIN.MPF");
+    std::fs::write(
+        &program,
+        "N10 G90 G0 X0 Y0 Z0\nN20 R210=25\nN30 G300\nN40 PARK\nN50 M30\n",
+    )
+    .unwrap();
+    std::fs::write(parts.join("umac.def"), "DEFINE PARK AS G0 X40\n").unwrap();
+    std::fs::write(cycles.join("_N_SMAC_DEF"), "DEFINE G300 AS G90 G0 Z=R210\n").unwrap();
+    let (code, stdout, stderr) = preview(&[
+        "--cycles",
+        cycles.to_str().unwrap(),
+        program.to_str().unwrap(),
+    ]);
+    let (_, without_cycles, _) = preview(&[program.to_str().unwrap()]);
+    std::fs::remove_dir_all(&folder).unwrap();
+    // The reading of the program block by block does not know the files' macros yet (S144 for
+    // G300, exit code 1); the run does.
+    assert!(code == 0 || code == 1, "{code}: {stderr}");
+    let ends = |stdout: &str| -> Vec<(u64, String)> {
+        let json: serde_json::Value = serde_json::from_str(stdout).unwrap();
+        json["moves"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|movement| {
+                (
+                    movement["line"].as_u64().unwrap(),
+                    movement["end"].to_string(),
+                )
+            })
+            .collect()
+    };
+    assert_eq!(
+        ends(&stdout),
+        vec![
+            (1, r#"{"X":0.0,"Y":0.0,"Z":0.0}"#.to_string()),
+            (3, r#"{"X":0.0,"Y":0.0,"Z":25.0}"#.to_string()),
+            (4, r#"{"X":40.0,"Y":0.0,"Z":25.0}"#.to_string()),
+        ]
+    );
+    // Without the cycle folder G300 is no macro: only the folder's PARK moves.
+    let lines: Vec<u64> = ends(&without_cycles)
+        .iter()
+        .map(|(line, _)| *line)
+        .collect();
+    assert_eq!(lines, vec![1, 4]);
+}

@@ -10,6 +10,7 @@ use sinumerik_lsp::analysis::execution::{
 use sinumerik_lsp::analysis::library::MemoryLibrary;
 use sinumerik_lsp::analysis::ProgramKind;
 use sinumerik_lsp::config::{parse_config_text, MachineConfig};
+use sinumerik_lsp::ide::workspace::{macro_file_rank, program_name_and_kind, FileKind};
 use sinumerik_lsp::syntax::lines;
 use std::path::{Path, PathBuf};
 
@@ -198,10 +199,23 @@ fn check_case(case: &Case) -> Vec<String> {
     let config = config_of(&text, &case.main);
     let options = options_of(&text);
     let mut library = MemoryLibrary::default();
+    // Macro definition files (`_N_UMAC_DEF`, `SMAC.DEF`, ...) in the order the control reads them.
+    let mut definitions: Vec<(u8, &PathBuf)> = Vec::new();
     for other in &case.others {
+        let file_name = other.file_name().unwrap().to_string_lossy().to_string();
+        let (program, file_kind) = program_name_and_kind(&file_name);
+        if file_kind == FileKind::Definitions {
+            definitions.push((macro_file_rank(&program), other));
+            continue;
+        }
         let name = other.file_stem().unwrap().to_string_lossy().to_string();
         let other_text = std::fs::read_to_string(other).expect("readable fixture");
         library.insert(&name, &other.display().to_string(), &other_text);
+    }
+    definitions.sort_by_key(|(rank, _)| *rank);
+    for (_, file) in definitions {
+        let file_text = std::fs::read_to_string(file).expect("readable fixture");
+        library.insert_macro_file(&file.display().to_string(), &file_text);
     }
     let kind = ProgramKind::from_extension(case.main.extension().and_then(|e| e.to_str()));
     let (execution, moves) = execute_collecting(&text, &config, kind, &library, &options);

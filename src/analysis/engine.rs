@@ -20,6 +20,7 @@ mod circles;
 mod frame_variables;
 mod join;
 mod macros;
+pub(crate) use macros::macro_definition;
 
 /// A block that moves axes.
 #[derive(Debug, Clone, PartialEq)]

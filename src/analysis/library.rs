@@ -3,6 +3,7 @@
 //! line (the program's folder, its parents, `--cycles`) and the server (the workspace index and the
 //! cycle folders) implement [`ProgramLibrary`] and do the reading.
 
+use crate::analysis::execution::entry::CallerEntry;
 use std::sync::Arc;
 
 /// One program file as the library found it.
@@ -27,6 +28,18 @@ pub trait ProgramLibrary: Send + Sync {
     /// order their definitions are read.
     fn macro_files(&self) -> Vec<Arc<LibraryProgram>> {
         Vec::new()
+    }
+
+    /// For a subprogram analysed on its own: the entry state its call sites agree on (`None`: they
+    /// do not agree, none is known, or the caller does not look; the reset state is assumed then).
+    fn caller_entry(&self) -> Option<Arc<CallerEntry>> {
+        None
+    }
+
+    /// Changes whenever what the library finds may have changed: a run made with an older value may
+    /// be out of date.
+    fn generation(&self) -> u64 {
+        0
     }
 }
 

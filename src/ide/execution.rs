@@ -4,8 +4,11 @@
 //! program) needs none of this: its moves are those of the document's analysis.
 
 use crate::analysis::document::LineSource;
-use crate::analysis::execution::{entry_assumptions, ExecutionOptions};
-use crate::analysis::execution::{execute, program::ProgramUnit, ExecutedMove, Execution};
+use crate::analysis::execution::entry::RunSetup;
+use crate::analysis::execution::first_pass::PassState;
+use crate::analysis::execution::library_macros::LibraryMacros;
+use crate::analysis::execution::{entry_assumptions, ExecutionOptions, RESET_SOURCE};
+use crate::analysis::execution::{execute_with, program::ProgramUnit, ExecutedMove, Execution};
 use crate::analysis::library::ProgramLibrary;
 use crate::analysis::ProgramKind;
 use crate::config::MachineConfig;
@@ -48,16 +51,38 @@ pub fn execute_document(
     let text: Arc<str> = Arc::from(text);
     let subprogram = kind == ProgramKind::Subprogram || crate::analysis::has_proc_header(&text);
     if !subprogram {
-        let unit = ProgramUnit::new(String::new(), None, Arc::clone(&text), config);
+        // A macro of a definition file reads like a call: a program that uses one runs.
+        let macros = LibraryMacros::read(library, config);
+        let unit = ProgramUnit::with_macro_names(
+            String::new(),
+            None,
+            Arc::clone(&text),
+            config,
+            macros.names(),
+        );
         if !unit.flow.has_flow {
             return DocumentExecution::InOrder;
         }
     }
+    let setup = RunSetup {
+        entry: subprogram.then(|| library.caller_entry()).flatten(),
+        record_first_passes: true,
+    };
     let mut moves = Vec::new();
-    let execution = execute(&text, config, kind, library, options, &mut |movement| {
-        moves.push(movement)
-    });
-    let assumed = entry_assumptions(&text, config, kind, options);
+    let execution = execute_with(
+        &text,
+        config,
+        kind,
+        library,
+        options,
+        &setup,
+        &mut |movement| moves.push(movement),
+    );
+    // From the call sites, the run says what it started from; else the reset state is assumed.
+    let assumed = match setup.entry {
+        Some(_) => execution.assumed.clone(),
+        None => entry_assumptions(&text, config, kind, options),
+    };
     let mut order: Vec<u32> = (0..moves.len() as u32).collect();
     order.sort_by_key(|&index| moves[index as usize].outer_line());
     let line_count = source.line_count();
@@ -144,6 +169,16 @@ impl DocumentExecution {
         }
     }
 
+    /// The modal state after the first execution of `line` and how often the line runs; `None` for
+    /// a document that runs in program order, or a line that never runs.
+    pub fn first_pass(&self, line: usize) -> Option<(&PassState, u32)> {
+        let DocumentExecution::Executed { execution, .. } = self else {
+            return None;
+        };
+        let state = execution.first_passes.as_ref()?.state(line)?;
+        Some((state, execution.passes_of_line(line)))
+    }
+
     /// What was assumed about the entry state.
     pub fn assumed(&self) -> &[(&'static str, String)] {
         match self {
@@ -175,6 +210,63 @@ fn end_text(executed: &ExecutedMove) -> String {
     parts.join(" ")
 }
 
+/// What a call on `line` ran, as Markdown: the called file and, for its first pass, where the axes
+/// are when it returned; `called` are the moves the call made (every pass).
+fn call_summary(
+    execution: &DocumentExecution,
+    line: usize,
+    called: &[&&ExecutedMove],
+) -> Option<String> {
+    let DocumentExecution::Executed { execution: run, .. } = execution else {
+        return None;
+    };
+    let recorded = run
+        .first_passes
+        .as_ref()
+        .and_then(|passes| passes.call(line));
+    // The directly called file: the recorded one, else the first called move's second stack entry
+    // (a move of a deeper call) or its own file.
+    let file = match recorded {
+        Some((path, _)) => path.map(str::to_string),
+        None => {
+            let first = called.first()?;
+            first
+                .stack
+                .get(1)
+                .map_or(first.path.clone(), |site| site.path.clone())
+                .map(|path| path.to_string())
+        }
+    };
+    let file = file.unwrap_or_else(|| "this program".to_string());
+    let mut text = format!("**Calls** `{file}`: {} moves.", called.len());
+    match recorded.and_then(|(_, after)| after) {
+        Some(after) if !after.positions.is_empty() => {
+            let positions: Vec<String> = after
+                .positions
+                .iter()
+                .map(|(name, value)| match value {
+                    Some(value) => format!("{name}{}", short(*value)),
+                    None => format!("{name}?"),
+                })
+                .collect();
+            text.push_str(&format!(
+                " After the call (first pass): {}.",
+                positions.join(" ")
+            ));
+        }
+        Some(_) => {}
+        None if recorded.is_some() => {
+            text.push_str(" The first call does not return to this program.")
+        }
+        None => {
+            if let Some(last) = called.last() {
+                text.push_str(&format!(" The last ends at {}.", end_text(last)));
+            }
+        }
+    }
+    Some(text)
+}
+
 /// What the run says about line `line`, as Markdown for a hover: how often it runs and where each
 /// pass ends, what a call on it runs and where the call ends, what is assumed. `None` for a document
 /// that runs in program order.
@@ -204,16 +296,11 @@ pub fn execution_summary(execution: &DocumentExecution, line: usize) -> Option<S
         .iter()
         .filter(|executed| !executed.stack.is_empty())
         .collect();
-    if let Some(last) = called.last() {
-        let file = last.path.as_deref().unwrap_or("this program");
+    if let Some(call) = call_summary(execution, line, &called) {
         if !text.is_empty() {
             text.push_str("\n\n");
         }
-        text.push_str(&format!(
-            "**Calls** `{file}`: {} moves; the last ends at {}.",
-            called.len(),
-            end_text(last)
-        ));
+        text.push_str(&call);
     }
     if own
         .iter()
@@ -231,7 +318,20 @@ pub fn execution_summary(execution: &DocumentExecution, line: usize) -> Option<S
             .flat_map(|executed| executed.assumed.iter().map(|name| name.as_ref()))
             .collect();
         if !axes.is_empty() {
-            let state: Vec<&str> = assumed.iter().map(|(_, value)| value.as_str()).collect();
+            let state: Vec<&str> = assumed
+                .iter()
+                .filter(|(name, _)| *name != "source")
+                .map(|(_, value)| value.as_str())
+                .collect();
+            let source = assumed
+                .iter()
+                .find(|(name, _)| *name == "source")
+                .map_or(RESET_SOURCE, |(_, value)| value.as_str());
+            let why = if source == RESET_SOURCE {
+                "assumed: reset state — this subprogram is analysed on its own, and no call sites that agree on units, distance mode and plane are known"
+            } else {
+                source
+            };
             if !text.is_empty() {
                 text.push_str("\n\n");
             }
@@ -239,7 +339,7 @@ pub fn execution_summary(execution: &DocumentExecution, line: usize) -> Option<S
             axes.sort_unstable();
             axes.dedup();
             text.push_str(&format!(
-                "**Assumed**: {} rest on the entry state {} (the reset state: this subprogram is analysed on its own, and the state at its calls is not known here).",
+                "**Assumed**: {} rest on the entry state {} ({why}).",
                 axes.join(" "),
                 state.join(" ")
             ));

@@ -62,7 +62,7 @@ pub struct Analysed {
     config: Arc<MachineConfig>,
     /// The run of the document (`ide::execution`), made when a feature first asks for it and kept
     /// for the revision it ran.
-    execution: Mutex<Option<(u64, Arc<DocumentExecution>)>>,
+    execution: Mutex<Option<(u64, u64, Arc<DocumentExecution>)>>,
 }
 
 impl Analysed {
@@ -73,8 +73,11 @@ impl Analysed {
     /// The run of this revision of the document, made now if no feature asked for it before.
     pub fn execution(&self, library: &dyn ProgramLibrary) -> Arc<DocumentExecution> {
         let mut cached = lock(&self.execution);
-        if let Some((revision, execution)) = cached.as_ref() {
-            if *revision == self.revision {
+        // Another file's change (a callee, a caller, a macro file) advances the library's generation:
+        // the run is made again for it.
+        let generation = library.generation();
+        if let Some((revision, run_generation, execution)) = cached.as_ref() {
+            if *revision == self.revision && *run_generation == generation {
                 return Arc::clone(execution);
             }
         }
@@ -85,7 +88,7 @@ impl Analysed {
             library,
             &self.config.execution,
         ));
-        *cached = Some((self.revision, Arc::clone(&execution)));
+        *cached = Some((self.revision, generation, Arc::clone(&execution)));
         execution
     }
 }

@@ -61,4 +61,8 @@ pub struct ModalStateResult {
     /// Whether a label, jump or loop before this line may make the control's path differ from
     /// program order.
     pub flow_uncertain: bool,
+    /// When the state is that of the block's first execution in the program's run: how often the
+    /// block runs (0: never); absent when it is the state in program order.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub passes: Option<u32>,
 }

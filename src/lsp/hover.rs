@@ -55,7 +55,8 @@ pub fn hover(
     // program that runs in order (the large CAM programs) is not run for a hover.
     let needs_run = report.before.flow_uncertain
         || report.after.flow_uncertain
-        || analysed.analysis.kind() == crate::analysis::ProgramKind::Subprogram;
+        || analysed.analysis.kind() == crate::analysis::ProgramKind::Subprogram
+        || calls_a_program(&line, config);
     let run_summary = needs_run
         .then(|| {
             let execution = analysed.execution(library);
@@ -511,5 +512,22 @@ pub fn machine_differs(
         end.iter()
             .find(|(end_name, _)| end_name == name)
             .is_some_and(|(_, end_value)| !same(shown, *end_value))
+    })
+}
+
+/// Whether the block calls a program: its hover then shows what the call ran (the program's run).
+fn calls_a_program(line: &str, config: &MachineConfig) -> bool {
+    let context = crate::syntax::SyntaxContext::new(config);
+    let mut block = crate::syntax::Block::default();
+    let mut findings = Vec::new();
+    crate::syntax::LineParser::new().parse(line, &context, &mut block, &mut findings);
+    block.interpreted_statements().iter().any(|statement| {
+        matches!(
+            statement,
+            crate::syntax::ast::Statement::Call {
+                kind: crate::syntax::ast::CallKind::Named | crate::syntax::ast::CallKind::Indirect,
+                ..
+            }
+        )
     })
 }

@@ -89,6 +89,8 @@ pub struct WorkspaceLibrary {
     shared: Weak<Shared>,
     /// The document's folder and the folders above it, nearest first; empty when it is no file.
     folders: Vec<PathBuf>,
+    /// The document's file, whose call sites give a subprogram's entry state.
+    path: Option<PathBuf>,
     cache: Mutex<FoundCache>,
 }
 
@@ -118,6 +120,7 @@ impl WorkspaceLibrary {
         WorkspaceLibrary {
             shared: Arc::downgrade(shared),
             folders: folders_above(path),
+            path: path.map(Path::to_path_buf),
             cache: Mutex::default(),
         }
     }
@@ -260,6 +263,31 @@ impl ProgramLibrary for WorkspaceLibrary {
             |cache, files| cache.macro_files = Some(files),
             || self.read_macro_files(&shared),
         )
+    }
+
+    /// The entry state the workspace's call sites of this subprogram agree on (`call_sites.rs`).
+    fn caller_entry(&self) -> Option<Arc<crate::analysis::execution::entry::CallerEntry>> {
+        self.entry_from_call_sites()
+    }
+
+    /// The index's generation: every change of an indexed file (a caller or a callee) advances it.
+    fn generation(&self) -> u64 {
+        self.index_generation()
+    }
+}
+
+/// What a library says beyond finding programs: the entry state from the call sites, and the
+/// generation of what it finds.
+impl WorkspaceLibrary {
+    fn entry_from_call_sites(&self) -> Option<Arc<crate::analysis::execution::entry::CallerEntry>> {
+        let shared = self.shared.upgrade()?;
+        crate::lsp::call_sites::caller_entry(&shared, self.path.as_deref()?)
+    }
+
+    fn index_generation(&self) -> u64 {
+        self.shared
+            .upgrade()
+            .map_or(0, |shared| shared.workspace.library_texts.generation())
     }
 }
 

@@ -20,6 +20,7 @@
 //! - `stdio.rs`: the process's stdin and stdout (pipe buffers, the raw output).
 
 mod arriving_open;
+mod call_sites;
 mod code_action;
 mod completion;
 mod convert;
@@ -37,6 +38,7 @@ mod json_string;
 mod library;
 mod log;
 mod memory;
+mod modal_state;
 mod navigation;
 mod numbers;
 mod open_texts;

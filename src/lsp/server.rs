@@ -164,21 +164,10 @@ impl Backend {
     pub async fn modal_state(&self, params: ModalStateParams) -> Result<ModalStateResult> {
         let _timer = HandlerTimer::new("sinumerik/modalState", &self.outgoing);
         let line = params.line as usize;
+        let library =
+            crate::lsp::library::workspace_library(&self.shared, file_path(&params.uri).as_deref());
         self.on_analysis(&params.uri, move |analysed| {
-            let after = analysed
-                .analysis
-                .block_report(&analysed.lines(), line)
-                .after;
-            ModalStateResult {
-                motion: after.motion,
-                plane: after.plane,
-                units: after.units,
-                distance: after.distance,
-                diameter: after.diameter,
-                settable_offset: after.settable_offset,
-                feed: after.feed,
-                flow_uncertain: after.flow_uncertain,
-            }
+            crate::lsp::modal_state::modal_state_at(analysed, library.as_ref(), line)
         })
         .await
     }

@@ -1,26 +1,38 @@
 //! Macros defined with `DEFINE name AS body` in the program (reference §8.10): a block that uses one is
 //! interpreted as the control does, with the name replaced by its body, e.g. `N30 RETRACT` as
-//! `N30 G0 G53 Z0 D0`. Macros from definition files the analysis has not seen stay calls.
+//! `N30 G0 G53 Z0 D0`. The interpreter also gives the engine the macros of the library's definition
+//! files (`execution/library_macros.rs`); macros of files the analysis has not seen stay calls.
 
 use super::Engine;
 use crate::diagnostics::{Diagnostic, Span};
-use crate::syntax::ast::{Block, CallKind, Statement};
+use crate::syntax::ast::{AddressKind, Block, CallKind, Statement};
 
 /// How deep macros may expand into other macros before the block is left as a call.
 const MAX_EXPANSION_DEPTH: u8 = 8;
 
 impl Engine<'_> {
+    /// Knows the macros of the library's definition files before the program's first block (in
+    /// reading order; the program's own definitions replace them when they are passed).
+    pub(crate) fn define_library_macros(&mut self, definitions: &[(String, String)]) {
+        for (name, body) in definitions {
+            self.memory.macros.retain(|(known, _)| known != name);
+            self.memory.macros.push((name.clone(), body.clone()));
+        }
+    }
+
+    /// Whether `name` (any case) is a macro the engine knows at this point: a use of it is expanded,
+    /// never run as a call.
+    pub(crate) fn is_macro(&self, name: &str) -> bool {
+        self.memory
+            .macros
+            .iter()
+            .any(|(known, _)| known.eq_ignore_ascii_case(name))
+    }
+
     /// Remembers the macros this block defines.
     pub(super) fn record_macro_definitions(&mut self, line: &str, block: &Block) {
         for statement in &block.statements {
-            if let Statement::MacroDefinition {
-                name: Some(name),
-                body,
-                ..
-            } = statement
-            {
-                let upper = line[name.start()..name.end()].to_ascii_uppercase();
-                let body = line[body.start()..body.end()].trim().to_string();
+            if let Some((upper, body)) = macro_definition(line, statement) {
                 self.memory.macros.retain(|(known, _)| *known != upper);
                 self.memory.macros.push((upper, body));
             }
@@ -53,6 +65,22 @@ impl Engine<'_> {
                         format!("{} {body} {}", &line[..span.start()], &line[span.end()..]);
                     Some((expanded, *span))
                 }
+                // An M number may be a macro too (`DEFINE M101 AS ...`): the parser reads it as an
+                // M function, so its written text is compared.
+                Statement::Address(word) if word.kind == AddressKind::MFunction => {
+                    let written = line.get(word.span.start()..word.span.end())?;
+                    let (_, body) = self
+                        .memory
+                        .macros
+                        .iter()
+                        .find(|(known, _)| known.eq_ignore_ascii_case(written))?;
+                    let expanded = format!(
+                        "{} {body} {}",
+                        &line[..word.span.start()],
+                        &line[word.span.end()..]
+                    );
+                    Some((expanded, word.span))
+                }
                 _ => None,
             })
     }
@@ -84,4 +112,25 @@ impl Engine<'_> {
         }));
         moved
     }
+}
+
+/// The upper-case name and the body of the macro `statement` (of `line`) defines. The name is read
+/// from the text: the parser splits a name made of an address letter and a number (`G300`, `M101`,
+/// `A1`) into the letter and a value, and its body span then starts at the number.
+pub(crate) fn macro_definition(line: &str, statement: &Statement) -> Option<(String, String)> {
+    let Statement::MacroDefinition {
+        name: Some(_),
+        body,
+        span,
+    } = statement
+    else {
+        return None;
+    };
+    let definition = line.get(span.start()..body.end())?;
+    let name = crate::syntax::macro_defined_by(definition)?;
+    // The statement starts with its keyword, and the name follows it.
+    let rest = definition.get("DEFINE".len()..)?.trim_start();
+    let after_name = rest.get(name.len()..)?.trim_start();
+    let body = after_name.get(2..)?.trim();
+    Some((name.to_ascii_uppercase(), body.to_string()))
 }

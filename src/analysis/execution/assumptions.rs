@@ -9,7 +9,7 @@ use crate::syntax::ast::{AddressKind, Block, Modifier, NamedAddress, Statement};
 
 /// The G groups a subprogram analysed on its own assumes from the reset state, with the names the
 /// preview uses: motion, plane, units, distance, feed type, diameter programming.
-const ASSUMED_GROUPS: [(u8, &str); 6] = [
+pub(super) const ASSUMED_GROUPS: [(u8, &str); 6] = [
     (1, "motion"),
     (6, "plane"),
     (13, "units"),

@@ -27,6 +27,13 @@ pub(super) struct PendingCall {
     span: Span,
 }
 
+impl PendingCall {
+    /// The program the call runs, by its index among the run's programs.
+    pub(super) fn unit(&self) -> usize {
+        self.unit
+    }
+}
+
 /// What a subprogram's `PROC` line declares.
 #[derive(Debug, Clone, Default, PartialEq)]
 pub(super) struct ProcInfo {
@@ -42,12 +49,14 @@ impl<'a, 's> Interpreter<'a, 's> {
         if let Some(found) = self.unit_names.get(name) {
             return *found;
         }
+        let macros = self.library_macros();
         let found = self.library.find(name).map(|program| {
-            let unit = ProgramUnit::new(
+            let unit = ProgramUnit::with_macro_names(
                 program.name.clone(),
                 Some(Arc::clone(&program.path)),
                 Arc::clone(&program.text),
                 self.config,
+                macros.names(),
             );
             self.add_unit(unit)
         });
@@ -76,6 +85,11 @@ impl<'a, 's> Interpreter<'a, 's> {
             _ => None,
         })?;
         let _ = control;
+        // A macro reads like a call; the engine expands it instead (the program's own macros and
+        // those of the definition files win over a program of the same name).
+        if engine.is_macro(&name) {
+            return None;
+        }
         let index = self.find_unit(&name)?;
         let arguments = evaluate_arguments(engine, block, line, args);
         Some(PendingCall {

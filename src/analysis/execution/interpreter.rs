@@ -4,6 +4,9 @@
 
 use crate::analysis::engine::{Engine, EngineSnapshot};
 use crate::analysis::execution::assumptions::reset_assumptions;
+use crate::analysis::execution::entry::RunSetup;
+use crate::analysis::execution::first_pass::FirstPasses;
+use crate::analysis::execution::library_macros::LibraryMacros;
 use crate::analysis::execution::paths::{Activation, Control, UnknownLoop, Way};
 use crate::analysis::execution::program::ProgramUnit;
 use crate::analysis::execution::resume::Recorder;
@@ -70,6 +73,12 @@ pub struct Interpreter<'a, 's> {
     /// States seen at the heads of long concrete loops, to find loops whose state never changes.
     pub(super) loop_heads: HashMap<(usize, usize, usize), EngineSnapshot>,
     scratch: Vec<Diagnostic>,
+    /// The macros of the library's definition files, read when the run starts.
+    pub(super) library_macros: Option<Arc<LibraryMacros>>,
+    /// The entry state from the call sites and whether first passes are recorded.
+    pub(super) setup: RunSetup,
+    /// The first passes of the analysed program's lines, when they are recorded.
+    pub(super) first_passes: Option<FirstPasses>,
 }
 
 impl<'a, 's> Interpreter<'a, 's> {
@@ -100,6 +109,9 @@ impl<'a, 's> Interpreter<'a, 's> {
             recorder: None,
             loop_heads: HashMap::new(),
             scratch: Vec::new(),
+            library_macros: None,
+            setup: RunSetup::default(),
+            first_passes: None,
         }
     }
 
@@ -116,8 +128,15 @@ impl<'a, 's> Interpreter<'a, 's> {
     }
 
     /// Runs the program `text` from its first block to its end.
-    pub fn run(self, text: Arc<str>, kind: ProgramKind) -> Execution {
-        let main = Arc::new(ProgramUnit::new(String::new(), None, text, self.config));
+    pub fn run(mut self, text: Arc<str>, kind: ProgramKind) -> Execution {
+        let macros = self.library_macros();
+        let main = Arc::new(ProgramUnit::with_macro_names(
+            String::new(),
+            None,
+            text,
+            self.config,
+            macros.names(),
+        ));
         self.run_unit(main, kind)
     }
 
@@ -140,6 +159,7 @@ impl<'a, 's> Interpreter<'a, 's> {
         self.units.push(main);
         let mut engine = Engine::new(self.config);
         engine.set_executing(true);
+        engine.define_library_macros(&self.library_macros().definitions);
         let mut control = Control {
             levels: vec![Activation::main(0)],
             forks: Vec::new(),
@@ -158,6 +178,7 @@ impl<'a, 's> Interpreter<'a, 's> {
                 }
                 EntryState::Unknown => engine.assume_inherited_state(),
             }
+            self.enter_from_callers(&mut control, &mut engine);
         }
         (control, engine)
     }
@@ -354,6 +375,7 @@ impl<'a, 's> Interpreter<'a, 's> {
                 None => marks.push((pc, mark)),
             }
         }
+        self.first_pass_before(control, engine, unit_index);
         let retest = control.level().retest_for == Some(pc);
         let next = if retest {
             control.level_mut().retest_for = None;
@@ -370,6 +392,8 @@ impl<'a, 's> Interpreter<'a, 's> {
                 self.record_move(control, engine, unit_index, pc, line, &block);
             }
             let modal = self.modal_call_after(control, engine, &block, pc, moved);
+            let callee = call.as_ref().or(modal.as_ref()).map(|call| call.unit());
+            self.first_pass_after(control, engine, unit_index, pc, callee);
             match (call, modal) {
                 (Some(call), _) | (None, Some(call)) => {
                     control.level_mut().pc = pc + 1;
@@ -532,6 +556,23 @@ impl<'a, 's> Interpreter<'a, 's> {
         self
     }
 
+    /// Runs with the entry state from the call sites, recording first passes when asked.
+    pub fn with_setup(mut self, setup: RunSetup) -> Self {
+        if setup.record_first_passes && !self.counting {
+            self.first_passes = Some(FirstPasses::default());
+        }
+        self.setup = setup;
+        self
+    }
+
+    /// How often line `pc` of the analysed program has run so far.
+    pub(super) fn passes_so_far(&self, pc: usize) -> u32 {
+        self.passes
+            .first()
+            .and_then(|lines| lines.get(pc).copied())
+            .unwrap_or(0)
+    }
+
     /// Gives this run the pass counts of an earlier counting run of the same program.
     pub fn with_pass_totals(mut self, totals: Vec<Vec<u32>>) -> Self {
         self.pass_totals = Some(totals);
@@ -547,6 +588,7 @@ impl<'a, 's> Interpreter<'a, 's> {
             executed_blocks: self.executed,
             pass_totals: self.passes,
             has_flow: self.units.first().is_some_and(|unit| unit.flow.has_flow),
+            first_passes: self.first_passes.take().map(Box::new),
         }
     }
 }

@@ -13,7 +13,10 @@
 mod assumptions;
 mod calls;
 mod control;
+pub mod entry;
+pub mod first_pass;
 mod interpreter;
+pub mod library_macros;
 mod paths;
 pub mod program;
 mod recorded;
@@ -81,6 +84,9 @@ pub struct Execution {
     /// Whether the analysed program has labels, jumps, control structures or calls: without them it
     /// runs in program order, every block once.
     pub has_flow: bool,
+    /// The first pass of each line of the analysed program, when the run was asked to record them
+    /// ([`entry::RunSetup`]).
+    pub first_passes: Option<Box<first_pass::FirstPasses>>,
 }
 
 impl Execution {
@@ -132,20 +138,51 @@ pub fn execute(
     options: &ExecutionOptions,
     visit: &mut dyn FnMut(ExecutedMove),
 ) -> Execution {
-    let main = Arc::new(program::ProgramUnit::new(
+    execute_with(
+        text,
+        config,
+        kind,
+        library,
+        options,
+        &entry::RunSetup::default(),
+        visit,
+    )
+}
+
+/// Runs a program like [`execute`], with the entry state from its call sites and the first passes
+/// recorded as `setup` asks.
+pub fn execute_with(
+    text: &str,
+    config: &MachineConfig,
+    kind: ProgramKind,
+    library: &dyn ProgramLibrary,
+    options: &ExecutionOptions,
+    setup: &entry::RunSetup,
+    visit: &mut dyn FnMut(ExecutedMove),
+) -> Execution {
+    let macros = Arc::new(library_macros::LibraryMacros::read(library, config));
+    let main = Arc::new(program::ProgramUnit::with_macro_names(
         String::new(),
         None,
         Arc::from(text),
         config,
+        macros.names(),
     ));
     if !main.flow.has_flow {
-        return interpreter::Interpreter::new(config, library, options, visit).run_unit(main, kind);
+        return interpreter::Interpreter::new(config, library, options, visit)
+            .with_library_macros(macros)
+            .with_setup(setup.clone())
+            .run_unit(main, kind);
     }
     let mut ignore = |_: ExecutedMove| {};
     let counted = interpreter::Interpreter::new(config, library, options, &mut ignore)
+        .with_library_macros(Arc::clone(&macros))
         .counting_only()
+        .with_setup(setup.clone())
         .run_unit(Arc::clone(&main), kind);
     interpreter::Interpreter::new(config, library, options, visit)
+        .with_library_macros(macros)
+        .with_setup(setup.clone())
         .with_pass_totals(counted.pass_totals)
         .run_unit(main, kind)
 }
@@ -162,11 +199,18 @@ pub fn entry_assumptions(
     if !subprogram || options.entry != EntryState::Reset {
         return Vec::new();
     }
-    assumptions::reset_assumptions(config)
-        .into_iter()
-        .map(|(_, name, value)| (name, value))
+    // The first entry says which state is assumed; the groups follow.
+    std::iter::once(("source", RESET_SOURCE.to_string()))
+        .chain(
+            assumptions::reset_assumptions(config)
+                .into_iter()
+                .map(|(_, name, value)| (name, value)),
+        )
         .collect()
 }
+
+/// How the preview and the hover name the assumed reset state (`"source"` of `"assumed"`).
+pub const RESET_SOURCE: &str = "assumed: reset state";
 
 /// The findings of running `text`, without building any move: what `check` adds to the findings of
 /// reading the program block by block.

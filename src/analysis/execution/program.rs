@@ -78,10 +78,25 @@ impl ProgramUnit {
         text: Arc<str>,
         config: &MachineConfig,
     ) -> ProgramUnit {
+        ProgramUnit::with_macro_names(name, path, text, config, std::iter::empty())
+    }
+
+    /// Like [`ProgramUnit::new`], with the names of macros defined outside the program (the
+    /// library's definition files) known to its parser as well.
+    pub fn with_macro_names<'n>(
+        name: String,
+        path: Option<Arc<str>>,
+        text: Arc<str>,
+        config: &MachineConfig,
+        outside: impl Iterator<Item = &'n str>,
+    ) -> ProgramUnit {
         let lines: Vec<(u32, u32)> = lines::line_ranges(&text)
             .map(|(start, end)| (start as u32, end as u32))
             .collect();
         let mut context = SyntaxContext::new(config);
+        for name in outside {
+            context.add_macro(name);
+        }
         for name in macro_names(&text) {
             context.add_macro(name);
         }

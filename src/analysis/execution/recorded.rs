@@ -8,13 +8,15 @@
 //! other edit resumes the earlier run: the result is the same as running the new text from the
 //! start, which the tests check after random edits.
 
+use crate::analysis::execution::entry::RunSetup;
 use crate::analysis::execution::interpreter::{Interpreter, RunEnd};
+use crate::analysis::execution::library_macros::LibraryMacros;
 use crate::analysis::execution::program::ProgramUnit;
 use crate::analysis::execution::resume::{
     unit_paths, Checkpoint, PassDelta, Recorder, Rejoin, NEVER,
 };
 use crate::analysis::execution::{ExecutedMove, Execution, ExecutionOptions};
-use crate::analysis::library::ProgramLibrary;
+use crate::analysis::library::{LibraryProgram, ProgramLibrary};
 use crate::analysis::ProgramKind;
 use crate::config::MachineConfig;
 use crate::diagnostics::LineDiagnostic;
@@ -55,6 +57,10 @@ pub struct RecordedRun {
     resumable: bool,
     kind: ProgramKind,
     options: ExecutionOptions,
+    setup: RunSetup,
+    /// The library's macro definition files and what they define, as the run read them.
+    macro_files: Vec<Arc<LibraryProgram>>,
+    macros: Arc<LibraryMacros>,
 }
 
 impl std::fmt::Debug for RecordedRun {
@@ -83,35 +89,64 @@ pub fn run_recorded(
     kind: ProgramKind,
     library: &dyn ProgramLibrary,
     options: &ExecutionOptions,
+    setup: &RunSetup,
     earlier: Option<&RecordedRun>,
 ) -> RecordedRun {
+    let context = RunContext {
+        kind,
+        options,
+        setup,
+        macro_files: library.macro_files(),
+    };
     if let Some(earlier) = earlier {
-        if let Some(run) = run_again(&text, config, kind, library, options, earlier) {
+        if let Some(run) = run_again(&text, config, library, &context, earlier) {
             return run;
         }
     }
-    let main = Arc::new(ProgramUnit::new(String::new(), None, text, config));
+    let macros = Arc::new(LibraryMacros::read(library, config));
+    let main = Arc::new(ProgramUnit::with_macro_names(
+        String::new(),
+        None,
+        text,
+        config,
+        macros.names(),
+    ));
     let lines = main.line_count();
     let mut moves = Vec::new();
     let mut sink = |movement| moves.push(movement);
-    let mut interpreter = Interpreter::new(config, library, options, &mut sink);
+    let mut interpreter = Interpreter::new(config, library, options, &mut sink)
+        .with_library_macros(Arc::clone(&macros))
+        .with_setup(setup.clone());
     interpreter.recorder = Some(Recorder::new(lines));
     let start = interpreter.start(main, kind);
     let end = interpreter.run_from(start);
     let parts = Parts::take(interpreter);
-    parts.into_run(moves, end, RunStart::Fresh, kind, options, None)
+    parts.into_run(moves, end, RunStart::Fresh, &context, macros, None)
+}
+
+/// What a run depends on besides the program's text and the called programs.
+struct RunContext<'c> {
+    kind: ProgramKind,
+    options: &'c ExecutionOptions,
+    setup: &'c RunSetup,
+    macro_files: Vec<Arc<LibraryProgram>>,
 }
 
 /// The run of `text` from `earlier`, or `None` when it must start from the first block.
 fn run_again(
     text: &Arc<str>,
     config: &MachineConfig,
-    kind: ProgramKind,
     library: &dyn ProgramLibrary,
-    options: &ExecutionOptions,
+    context: &RunContext,
     earlier: &RecordedRun,
 ) -> Option<RecordedRun> {
-    if !earlier.resumable || earlier.kind != kind || earlier.options != *options {
+    let (kind, options) = (context.kind, context.options);
+    if !earlier.resumable
+        || earlier.kind != kind
+        || earlier.options != *options
+        || earlier.setup != *context.setup
+        || !same_programs(&earlier.macro_files, &context.macro_files)
+    {
         return None;
     }
     let old_main = earlier.units.first()?;
@@ -146,6 +181,9 @@ fn run_again(
             resumable: true,
             kind,
             options: options.clone(),
+            setup: earlier.setup.clone(),
+            macro_files: earlier.macro_files.clone(),
+            macros: Arc::clone(&earlier.macros),
         });
     }
     let last_edited_run = edited
@@ -204,7 +242,16 @@ fn run_again(
     let parts;
     {
         let mut sink = |movement| moves.push(movement);
-        let mut interpreter = Interpreter::new(config, library, options, &mut sink);
+        let mut interpreter = Interpreter::new(config, library, options, &mut sink)
+            .with_library_macros(Arc::clone(&earlier.macros))
+            .with_setup(context.setup.clone());
+        if let (Some(passes), true) = (
+            earlier.execution.first_passes.as_deref(),
+            interpreter.first_passes.is_some(),
+        ) {
+            interpreter.first_passes =
+                Some(passes.before(&earlier.first_run, at, checkpoint.awaiting));
+        }
         interpreter.units = units;
         interpreter.unit_names = earlier.unit_names.clone();
         interpreter.passes = passes;
@@ -243,9 +290,10 @@ fn run_again(
                 .iter()
                 .map(|movement| movement.pass),
         );
-        return Some(parts.into_run(moves, run_end, start, kind, options, Some(raw_passes)));
+        let macros = Arc::clone(&earlier.macros);
+        return Some(parts.into_run(moves, run_end, start, context, macros, Some(raw_passes)));
     };
-    Some(parts.rejoin(earlier, index, moves, raw_passes, start, kind, options))
+    Some(parts.rejoin(earlier, index, moves, raw_passes, start))
 }
 
 /// The lines where `new` differs from `old` (of the same length), when every such line plays the
@@ -275,6 +323,15 @@ fn edited_lines(old: &ProgramUnit, new: &ProgramUnit) -> Option<Vec<usize>> {
         edited.push(line);
     }
     Some(edited)
+}
+
+/// Whether two lists of macro definition files are the same files with the same texts.
+fn same_programs(earlier: &[Arc<LibraryProgram>], now: &[Arc<LibraryProgram>]) -> bool {
+    earlier.len() == now.len()
+        && earlier
+            .iter()
+            .zip(now)
+            .all(|(earlier, now)| earlier.path == now.path && earlier.text == now.text)
 }
 
 impl RecordedRun {
@@ -332,8 +389,8 @@ impl<'a> Parts<'a> {
         mut moves: Vec<ExecutedMove>,
         end: RunEnd,
         start: RunStart,
-        kind: ProgramKind,
-        options: &ExecutionOptions,
+        context: &RunContext,
+        macros: Arc<LibraryMacros>,
         raw_passes: Option<Vec<u32>>,
     ) -> RecordedRun {
         let raw_passes =
@@ -358,14 +415,16 @@ impl<'a> Parts<'a> {
             last_run: self.recorder.last_run,
             interval: self.recorder.interval,
             resumable: end == RunEnd::Finished,
-            kind,
-            options: options.clone(),
+            kind: context.kind,
+            options: context.options.clone(),
+            setup: context.setup.clone(),
+            macro_files: context.macro_files.clone(),
+            macros,
         }
     }
 
     /// The run that reached the state of `earlier` at its checkpoint `index`: the rest is
     /// `earlier`'s, shifted by the difference in executed blocks.
-    #[allow(clippy::too_many_arguments)]
     fn rejoin(
         mut self,
         earlier: &RecordedRun,
@@ -373,8 +432,6 @@ impl<'a> Parts<'a> {
         mut moves: Vec<ExecutedMove>,
         mut raw_passes: Vec<u32>,
         start: RunStart,
-        kind: ProgramKind,
-        options: &ExecutionOptions,
     ) -> RecordedRun {
         let joined = &earlier.checkpoints[index];
         raw_passes.extend(
@@ -423,6 +480,13 @@ impl<'a> Parts<'a> {
             .sort_by_key(|item| (item.line, item.diagnostic.span.start()));
         self.execution.executed_blocks = shift(earlier.execution.executed_blocks);
         self.execution.pass_totals = earlier.execution.pass_totals.clone();
+        if let (Some(mine), Some(theirs)) = (
+            self.execution.first_passes.take(),
+            earlier.execution.first_passes.as_deref(),
+        ) {
+            let joined = mine.joined(theirs, &earlier.first_run, joined.executed);
+            self.execution.first_passes = Some(Box::new(joined));
+        }
         hide_single_passes(
             &mut moves,
             &raw_passes,
@@ -443,8 +507,11 @@ impl<'a> Parts<'a> {
             last_run,
             interval: recorder.interval.max(earlier.interval),
             resumable: earlier.resumable,
-            kind,
-            options: options.clone(),
+            kind: earlier.kind,
+            options: earlier.options.clone(),
+            setup: earlier.setup.clone(),
+            macro_files: earlier.macro_files.clone(),
+            macros: Arc::clone(&earlier.macros),
         }
     }
 }

@@ -44,6 +44,9 @@ pub(super) struct Checkpoint {
     pub control: Control,
     pub engine: EngineSnapshot,
     pub loop_heads: HashMap<(usize, usize, usize), EngineSnapshot>,
+    /// The call line whose first call returned just before (its state after the call is taken at
+    /// the next block), when first passes are recorded.
+    pub awaiting: Option<usize>,
     /// How often each line ran since the previous checkpoint.
     pub delta: PassDelta,
 }
@@ -275,6 +278,7 @@ impl<'a> Interpreter<'a, '_> {
         if let Some(index) = self.rejoin_point(control, engine) {
             return Some(index);
         }
+        let awaiting = self.awaiting_call();
         let recorder = self.recorder.as_mut()?;
         if !recorder.due(self.executed) {
             return None;
@@ -288,6 +292,7 @@ impl<'a> Interpreter<'a, '_> {
             control: control.clone(),
             engine: engine.snapshot(),
             loop_heads: self.loop_heads.clone(),
+            awaiting,
             delta,
         };
         recorder.push(checkpoint);
@@ -307,6 +312,7 @@ impl<'a> Interpreter<'a, '_> {
                 || self.executed.saturating_add(rest) > self.options.max_blocks
                 || checkpoint.control != *control
                 || checkpoint.loop_heads != self.loop_heads
+                || checkpoint.awaiting != self.awaiting_call()
             {
                 continue;
             }
@@ -358,6 +364,12 @@ impl<'a> Interpreter<'a, '_> {
             }
         }
         earlier.values().all(|&count| count == 0)
+    }
+
+    fn awaiting_call(&self) -> Option<usize> {
+        self.first_passes
+            .as_ref()
+            .and_then(|passes| passes.awaiting())
     }
 
     /// The record of this run, once it ended.

@@ -1,5 +1,6 @@
 // The status-bar item: the modal state at the cursor from the server's `sinumerik/modalState`
-// request, `{uri, line}` -> `{motion, plane, units, distance, diameter}` (each may be null: unknown).
+// request, `{uri, line}` -> `{motion, plane, units, distance, diameter}` (each may be null: unknown),
+// and `passes` when the state is that of the block's first execution in the program's run.
 
 export interface ModalState {
   motion: string | null;
@@ -7,6 +8,8 @@ export interface ModalState {
   units: string | null;
   distance: string | null;
   diameter: string | null;
+  /** How often the block runs when the state is its first pass's; null: the state in program order. */
+  passes: number | null;
 }
 
 export const MODAL_STATE_REQUEST = 'sinumerik/modalState';
@@ -23,6 +26,7 @@ export function parseModalState(value: unknown): ModalState | null {
     units: field('units'),
     distance: field('distance'),
     diameter: field('diameter'),
+    passes: typeof record.passes === 'number' && Number.isInteger(record.passes) && record.passes >= 0 ? record.passes : null,
   };
 }
 
@@ -46,5 +50,13 @@ export function formatModalState(state: ModalState, line: number): StatusText {
   const lines = [`Modal state at line ${line + 1} (from the language server):`];
   for (const name of FIELDS) lines.push(`${NAMES[name]}: ${state[name] ?? 'unknown'}`);
   if (unknown.length) lines.push('? = unknown here (inherited from a caller, or after a call or a jump)');
-  return { text: parts.join(' '), tooltip: lines.join('\n') };
+  let pass = '';
+  if (state.passes === 0) {
+    pass = ' · not run';
+    lines.push('The program\'s run never reaches this block.');
+  } else if (state.passes !== null && state.passes > 1) {
+    pass = ` · pass 1 of ${state.passes}`;
+    lines.push(`The block runs ${state.passes} times: this is the state of its first pass.`);
+  }
+  return { text: parts.join(' ') + pass, tooltip: lines.join('\n') };
 }

@@ -62,3 +62,16 @@ test('the status bar reads the modal state, with ? where the server does not kno
   assert.equal(parseModalState(null), null);
   assert.equal(parseModalState('G1'), null);
 });
+
+test('the status bar shows the first pass of a block that runs several times, with the pass count', () => {
+  const looped = parseModalState({ motion: 'G1', plane: 'G17', units: 'G71', distance: 'G90', diameter: null, passes: 6 })!;
+  const status = formatModalState(looped, 2);
+  assert.equal(status.text, 'G90 G71 G17 G1 · pass 1 of 6');
+  assert.match(status.tooltip, /runs 6 times: this is the state of its first pass/);
+  const once = parseModalState({ motion: 'G1', plane: 'G17', units: 'G71', distance: 'G90', diameter: null, passes: 1 })!;
+  assert.equal(formatModalState(once, 2).text, 'G90 G71 G17 G1');
+  const never = parseModalState({ motion: 'G1', plane: 'G17', units: 'G71', distance: 'G90', diameter: null, passes: 0 })!;
+  assert.equal(formatModalState(never, 2).text, 'G90 G71 G17 G1 · not run');
+  const inOrder = parseModalState({ motion: 'G1', plane: 'G17', units: 'G71', distance: 'G90', diameter: null, passes: 'x' })!;
+  assert.equal(inOrder.passes, null);
+});
