@@ -421,18 +421,18 @@ impl<'a, 's> Interpreter<'a, 's> {
             return Next::Line(target);
         }
         let depth = control.levels.len() - 1;
-        if let Some(position) = control
+        let unknown = control
             .unknown_loops
             .iter()
-            .position(|unknown| unknown.depth == depth && unknown.head == target)
-        {
-            return self.widen(control, engine, position, target);
-        }
+            .position(|unknown| unknown.depth == depth && unknown.head == target);
+        // The passes of a loop whose passes are not known are not counted: ways in it meet whatever
+        // pass they are in.
+        let counted = u32::from(unknown.is_none());
         let next_fork = self.next_fork;
         let level = control.level_mut();
         let (passes, mark) = match level.loops.last_mut() {
             Some(frame) if frame.back_to == target => {
-                frame.passes += 1;
+                frame.passes += counted;
                 (
                     frame.passes,
                     std::mem::replace(&mut frame.fork_mark, next_fork),
@@ -450,23 +450,29 @@ impl<'a, 's> Interpreter<'a, 's> {
                     .find(|(line, _)| *line == target)
                 {
                     Some((_, passes)) => {
-                        *passes += 1;
+                        *passes += counted;
                         *passes
                     }
                     None => {
-                        level.jump_passes.push((target, 1));
-                        1
+                        level.jump_passes.push((target, counted));
+                        counted
                     }
                 };
                 (passes, mark)
             }
         };
+        if let Some(position) = unknown {
+            return self.widen(control, engine, position, target, mark);
+        }
         // A way that still depends on a condition met in this pass and decided neither way: whether
         // and when the loop ends is not known.
-        if control.forks.iter().any(|(decision, _)| *decision >= mark) {
+        if control
+            .open_decisions(&self.covered)
+            .any(|decision| decision >= mark)
+        {
             mark_unknown_loop(control, depth, target, pc);
             let position = control.unknown_loops.len() - 1;
-            return self.widen(control, engine, position, target);
+            return self.widen(control, engine, position, target, mark);
         }
         if passes > self.options.max_loop_passes {
             self.report(
@@ -481,7 +487,7 @@ impl<'a, 's> Interpreter<'a, 's> {
             );
             mark_unknown_loop(control, depth, target, pc);
             let position = control.unknown_loops.len() - 1;
-            return self.widen(control, engine, position, target);
+            return self.widen(control, engine, position, target, mark);
         }
         if passes % ENDLESS_CHECK_INTERVAL == 0 {
             let key = (depth, control.level().unit, target);
@@ -503,13 +509,15 @@ impl<'a, 's> Interpreter<'a, 's> {
 
     /// The next pass of a loop whose passes are not known: the state at its head joins the state of
     /// this pass; when nothing changes any more, every way out of the loop has been seen and this way
-    /// ends.
+    /// ends. The way of the decisions of its last pass (from `pass_mark` on) goes on as an earlier
+    /// pass did: the ways that took them the other way are no longer conditional on them.
     fn widen(
         &mut self,
         control: &mut Control,
         engine: &mut Engine<'a>,
         position: usize,
         target: usize,
+        pass_mark: u32,
     ) -> Next {
         let snapshot = engine.snapshot();
         let unknown = &mut control.unknown_loops[position];
@@ -519,6 +527,12 @@ impl<'a, 's> Interpreter<'a, 's> {
                 let mut joined = stored.clone();
                 joined.join(&snapshot);
                 if joined == *stored {
+                    self.covered.extend(
+                        control
+                            .forks
+                            .iter()
+                            .filter(|(decision, _)| *decision >= pass_mark),
+                    );
                     return Next::Stop;
                 }
                 *stored = joined.clone();

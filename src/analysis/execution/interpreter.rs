@@ -4,7 +4,7 @@
 
 use crate::analysis::engine::{Engine, EngineSnapshot};
 use crate::analysis::execution::assumptions::reset_assumptions;
-use crate::analysis::execution::paths::{Activation, Control, UnknownLoop, Way};
+use crate::analysis::execution::paths::{Activation, Control, UnknownLoop, Way, MAX_FORKS};
 use crate::analysis::execution::program::ProgramUnit;
 use crate::analysis::execution::{
     EntryState, ExecutedMove, Execution, ExecutionOptions, ProgramEnd,
@@ -21,9 +21,6 @@ use std::sync::Arc;
 /// Undecided conditions in one run after which the rest is read in program order: a program whose
 /// every way depends on data the analysis does not have is not worth following further.
 const MAX_DECISIONS: u32 = 20_000;
-
-/// The undecided conditions a way remembers (it is conditional as long as it remembers one).
-const MAX_FORKS: usize = 64;
 
 /// Where a way goes after a block.
 pub(super) enum Next {
@@ -62,6 +59,10 @@ pub struct Interpreter<'a, 's> {
     /// The ways that wait, in no particular order.
     pending: Vec<Way>,
     pub(super) next_fork: u32,
+    /// Decisions taken on a way that ended because its loop's state no longer changed: that way goes
+    /// on as an earlier pass did, so a way that took such a decision the other way does not depend
+    /// on it.
+    pub(super) covered: HashSet<(u32, bool)>,
     assumed: Vec<(&'static str, String)>,
     /// States seen at the heads of long concrete loops, to find loops whose state never changes.
     pub(super) loop_heads: HashMap<(usize, usize, usize), EngineSnapshot>,
@@ -92,6 +93,7 @@ impl<'a, 's> Interpreter<'a, 's> {
             executed: 0,
             pending: Vec::new(),
             next_fork: 0,
+            covered: HashSet::new(),
             assumed: Vec::new(),
             loop_heads: HashMap::new(),
             scratch: Vec::new(),
@@ -381,7 +383,7 @@ impl<'a, 's> Interpreter<'a, 's> {
             path: self.units[unit_index].path.clone(),
             stack: Arc::clone(&level.stack),
             pass,
-            conditional: !control.forks.is_empty(),
+            conditional: { control.open_decisions(&self.covered).next().is_some() },
             assumed,
         });
     }
