@@ -6,6 +6,7 @@ use crate::analysis::engine::{Engine, EngineSnapshot};
 use crate::analysis::execution::assumptions::reset_assumptions;
 use crate::analysis::execution::paths::{Activation, Control, UnknownLoop, Way, MAX_FORKS};
 use crate::analysis::execution::program::ProgramUnit;
+use crate::analysis::execution::tables::table_mark;
 use crate::analysis::execution::{
     EntryState, ExecutedMove, Execution, ExecutionOptions, ProgramEnd,
 };
@@ -328,11 +329,19 @@ impl<'a, 's> Interpreter<'a, 's> {
             if call.is_some() {
                 engine.follow_call_of_next_block();
             }
+            let table = table_mark(&block, line);
+            if let Some(mark) = table {
+                self.table_start(control, engine, mark);
+            }
             self.scratch.clear();
-            let moved = engine.step(line, &block, &mut self.scratch);
+            let moved = engine.step(line, &block, &mut self.scratch)
+                && control.level().curve_table.is_none();
             self.update_assumptions(control, engine, line, &block);
             if moved && !self.counting && !control.widening() {
                 self.record_move(control, engine, unit_index, pc, line, &block);
+            }
+            if let Some(mark) = table {
+                self.table_end(control, engine, mark);
             }
             let modal = self.modal_call_after(control, engine, &block, pc, moved);
             match (call, modal) {

@@ -17,6 +17,7 @@ mod interpreter;
 mod paths;
 pub mod program;
 mod repeats;
+mod tables;
 
 use crate::analysis::library::ProgramLibrary;
 use crate::analysis::{Move, ProgramKind};

@@ -85,6 +85,9 @@ pub struct Activation {
     pub repeats: Vec<RepeatFrame>,
     /// The calls that led here, outermost first (shared by every move of the level).
     pub stack: Arc<[CallSite]>,
+    /// Inside a curve table definition (`CTABDEF` … `CTABEND`): the state before it, which its end
+    /// restores. Its blocks move no axis.
+    pub curve_table: Option<Box<EngineSnapshot>>,
 }
 
 impl Activation {
@@ -100,6 +103,7 @@ impl Activation {
             label_marks: Vec::new(),
             repeats: Vec::new(),
             stack: Arc::from(Vec::new()),
+            curve_table: None,
         }
     }
 }
@@ -216,6 +220,7 @@ impl Control {
                     && mine.retest_for == theirs.retest_for
                     && mine.modal_call == theirs.modal_call
                     && mine.repeats == theirs.repeats
+                    && mine.curve_table.is_some() == theirs.curve_table.is_some()
                     && mine
                         .loops
                         .iter()
@@ -250,6 +255,9 @@ impl Control {
             }
         }
         for (mine, theirs) in self.levels.iter_mut().zip(&other.levels) {
+            if let (Some(table), Some(other_table)) = (&mut mine.curve_table, &theirs.curve_table) {
+                table.join(other_table);
+            }
             if let (Some(mine), Some(theirs)) = (mine.call.as_mut(), theirs.call.as_ref()) {
                 mine.caller_locals.join(&theirs.caller_locals);
                 if let (Some(saved), Some(other_saved)) = (mine.saved.as_mut(), &theirs.saved) {
