@@ -5,14 +5,12 @@
 use crate::analysis::engine::Engine;
 use crate::analysis::eval::{evaluate, real_equal, real_less_equal, Variables};
 use crate::analysis::execution::interpreter::{mark_unknown_loop, Interpreter, Next};
+use crate::analysis::execution::jump_targets::JumpOutcome;
 use crate::analysis::execution::paths::{Control, LoopFrame};
 use crate::analysis::execution::program::{Partner, ProgramUnit};
 use crate::analysis::execution::{ends_program, ProgramEnd};
 use crate::diagnostics::{Code, Span};
-use crate::syntax::ast::{
-    AssignTarget, Block, ExprId, JumpKind, JumpTarget, Statement, StructureKeyword,
-};
-use crate::syntax::jumps::{resolve_jump, JumpResolution};
+use crate::syntax::ast::{AssignTarget, Block, ExprId, Statement, StructureKeyword};
 
 /// Passes of one loop after which the interpreter compares the state at its head with the state one
 /// such interval before: equal states mean the loop never ends.
@@ -167,12 +165,21 @@ impl<'a, 's> Interpreter<'a, 's> {
                     let target_line = match self
                         .jump_target(engine, unit, block, line, pc, *kind, target)
                     {
-                        Ok(Some(target_line)) => target_line,
-                        Ok(None) => {
+                        JumpOutcome::Line(target_line) => target_line,
+                        JumpOutcome::GoOn => {
                             // GOTOS without a restart, GOTOC to a missing target: the program goes on.
                             continue;
                         }
-                        Err(()) => {
+                        JumpOutcome::Missing(code, message) => {
+                            // The control stops with alarm 14080 where the jump is taken; the way on
+                            // which it is not goes on.
+                            self.report(control, pc, code, *span, message);
+                            if decision == Some(true) {
+                                return Next::Stop;
+                            }
+                            continue;
+                        }
+                        JumpOutcome::Unknown => {
                             self.report(
                                 control,
                                 pc,
@@ -361,43 +368,6 @@ impl<'a, 's> Interpreter<'a, 's> {
         });
         let (counter, end_value) = (counter?, end_value?);
         Some(real_less_equal(counter, end_value))
-    }
-
-    /// The line a jump reaches; `Ok(None)` when it goes on with the next block (GOTOS without a
-    /// restart, GOTOC to a missing target), `Err` when the target cannot be known.
-    #[allow(clippy::too_many_arguments)]
-    fn jump_target(
-        &mut self,
-        engine: &Engine<'a>,
-        unit: &ProgramUnit,
-        block: &Block,
-        line: &str,
-        pc: usize,
-        kind: JumpKind,
-        target: &JumpTarget,
-    ) -> Result<Option<usize>, ()> {
-        let _ = (engine, block);
-        if kind == JumpKind::Gotos {
-            return match self.options.gotos_restarts {
-                Some(true) => Ok(Some(unit.flow.first_executable)),
-                Some(false) => Ok(None),
-                None => Err(()),
-            };
-        }
-        let candidates: &[usize] = match target {
-            JumpTarget::Label(span) => {
-                let name = line[span.start()..span.end()].to_ascii_uppercase();
-                unit.flow.label_lines(&name)
-            }
-            JumpTarget::BlockNumber { value, .. } => unit.flow.block_number_lines(*value),
-            JumpTarget::Computed(_) | JumpTarget::None => return Err(()),
-        };
-        match resolve_jump(kind, pc, candidates) {
-            JumpResolution::Found(target_line) => Ok(Some(target_line)),
-            _ if kind == JumpKind::Gotoc => Ok(None),
-            // The control stops with alarm 14080 (reported as W304/W305); nothing runs after it.
-            _ => Err(()),
-        }
     }
 
     /// Continues the way at `target` of the same level: forward, or backward as the next pass of a

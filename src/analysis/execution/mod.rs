@@ -14,6 +14,7 @@ mod assumptions;
 mod calls;
 mod control;
 mod interpreter;
+mod jump_targets;
 mod paths;
 pub mod program;
 mod repeats;
