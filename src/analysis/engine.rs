@@ -18,6 +18,7 @@ mod assignments;
 mod checks;
 mod circles;
 mod frame_variables;
+mod indirect_axes;
 mod join;
 mod macros;
 pub(crate) use macros::macro_definition;
@@ -218,7 +219,7 @@ fn difference(now: &[Option<f64>], then: &[Option<f64>]) -> Option<Vec<f64>> {
 
 /// The non-modal G functions of one block that change what its axis words mean.
 #[derive(Default)]
-struct BlockFunctions {
+pub(super) struct BlockFunctions {
     frame_or_pole: Option<GCode>,
     dwell: bool,
     machine_coordinates: bool,
@@ -656,11 +657,10 @@ impl<'a> Engine<'a> {
                         );
                     }
                     AddressKind::Named(NamedAddress::Positioning | NamedAddress::IndirectAxis)
-                        if functions.frame_or_pole.is_none() =>
+                        if functions.frame_or_pole.is_none() && !functions.dwell =>
                     {
-                        // POS[X]=, POSA[X]= and AX[X]= move an axis; they are not followed, so the
-                        // axis becomes unknown. SPOS and SPOSA position a spindle, not an axis.
-                        self.forget_indirect_axis(line, block, word);
+                        moved |=
+                            self.apply_named_axis_word(line, block, word, &functions, diagnostics);
                     }
                     AddressKind::Named(NamedAddress::Turns) => {
                         circle_words.turns =
@@ -863,7 +863,7 @@ impl<'a> Engine<'a> {
 
     /// Applies one axis word of the configured axis `index`; returns false when the axis became
     /// unknown.
-    fn apply_axis_word(
+    pub(super) fn apply_axis_word(
         &mut self,
         index: usize,
         line: &str,
@@ -997,37 +997,8 @@ impl<'a> Engine<'a> {
         target.is_some()
     }
 
-    /// `POS[X]=`, `POSA[X]=`, `AX[X]=`: the named axis becomes unknown; every axis when the name is not
-    /// written out.
-    fn forget_indirect_axis(&mut self, line: &str, block: &Block, word: &AddressWord) {
-        let name = line[word.name.start()..word.name.end()].to_ascii_uppercase();
-        if name.starts_with("SPOS") {
-            return;
-        }
-        let axis = match &word.extension {
-            Some(Extension::Index { indexes, .. }) if indexes.len() == 1 => {
-                let expr = block.expr(indexes[0]);
-                match &expr.kind {
-                    ExprKind::Name { indexes } if indexes.is_empty() => {
-                        self.axis_index(&line[expr.span.start()..expr.span.end()])
-                    }
-                    _ => None,
-                }
-            }
-            _ => None,
-        };
-        match axis {
-            Some(index) => self.program_axis(index, None),
-            None => {
-                for index in 0..self.config.axes.len() {
-                    self.program_axis(index, None);
-                }
-            }
-        }
-    }
-
     /// The block programs axis `index` to `value` in workpiece coordinates.
-    fn program_axis(&mut self, index: usize, value: Option<f64>) {
+    pub(super) fn program_axis(&mut self, index: usize, value: Option<f64>) {
         self.state.program(index, value);
         self.written[index] = 1;
     }
@@ -1101,10 +1072,17 @@ impl<'a> Engine<'a> {
             };
             let elements: Vec<Option<Value>> = match &declarator.initial {
                 None => continue,
-                Some(Initializer::Value(id)) => vec![value_of(*id, &self.state.variables)],
+                // An AXIS variable's initial value is an axis name written bare (`DEF AXIS AC1=X`).
+                Some(Initializer::Value(id)) => vec![value_of(*id, &self.state.variables)
+                    .or_else(|| self.axis_name_value(line, block, &upper, Some(*id)))],
                 Some(Initializer::List(items) | Initializer::Set(items)) => items
                     .iter()
-                    .map(|item| item.and_then(|id| value_of(id, &self.state.variables)))
+                    .map(|item| {
+                        item.and_then(|id| {
+                            value_of(id, &self.state.variables)
+                                .or_else(|| self.axis_name_value(line, block, &upper, Some(id)))
+                        })
+                    })
                     .collect(),
                 Some(Initializer::Repeat { value, count }) => {
                     let element = value_of(*value, &self.state.variables);
@@ -1582,7 +1560,7 @@ impl<'a> Engine<'a> {
     }
 
     /// The configuration index of an axis, by name in any case.
-    fn axis_index(&self, name: &str) -> Option<usize> {
+    pub(super) fn axis_index(&self, name: &str) -> Option<usize> {
         self.config
             .axes
             .iter()

@@ -196,7 +196,7 @@ impl Engine<'_> {
     }
 
     /// The value of `AXVAR=X` for an AXIS variable: a bare configured axis name stands for itself.
-    fn axis_name_value(
+    pub(super) fn axis_name_value(
         &self,
         line: &str,
         block: &Block,

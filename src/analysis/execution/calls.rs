@@ -236,6 +236,7 @@ impl<'a, 's> Interpreter<'a, 's> {
             jump_passes: Vec::new(),
             label_marks: Vec::new(),
             repeats: Vec::new(),
+            curve_table: None,
             stack: Arc::from(stack),
         });
         Next::Moved

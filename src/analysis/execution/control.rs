@@ -5,14 +5,12 @@
 use crate::analysis::engine::Engine;
 use crate::analysis::eval::{evaluate, real_equal, real_less_equal, Variables};
 use crate::analysis::execution::interpreter::{mark_unknown_loop, Interpreter, Next};
+use crate::analysis::execution::jump_targets::JumpOutcome;
 use crate::analysis::execution::paths::{Control, LoopFrame};
 use crate::analysis::execution::program::{Partner, ProgramUnit};
 use crate::analysis::execution::{ends_program, ProgramEnd};
 use crate::diagnostics::{Code, Span};
-use crate::syntax::ast::{
-    AssignTarget, Block, ExprId, JumpKind, JumpTarget, Statement, StructureKeyword,
-};
-use crate::syntax::jumps::{resolve_jump, JumpResolution};
+use crate::syntax::ast::{AssignTarget, Block, ExprId, Statement, StructureKeyword};
 
 /// Passes of one loop after which the interpreter compares the state at its head with the state one
 /// such interval before: equal states mean the loop never ends.
@@ -167,12 +165,21 @@ impl<'a, 's> Interpreter<'a, 's> {
                     let target_line = match self
                         .jump_target(engine, unit, block, line, pc, *kind, target)
                     {
-                        Ok(Some(target_line)) => target_line,
-                        Ok(None) => {
+                        JumpOutcome::Line(target_line) => target_line,
+                        JumpOutcome::GoOn => {
                             // GOTOS without a restart, GOTOC to a missing target: the program goes on.
                             continue;
                         }
-                        Err(()) => {
+                        JumpOutcome::Missing(code, message) => {
+                            // The control stops with alarm 14080 where the jump is taken; the way on
+                            // which it is not goes on.
+                            self.report(control, pc, code, *span, message);
+                            if decision == Some(true) {
+                                return Next::Stop;
+                            }
+                            continue;
+                        }
+                        JumpOutcome::Unknown => {
                             self.report(
                                 control,
                                 pc,
@@ -363,43 +370,6 @@ impl<'a, 's> Interpreter<'a, 's> {
         Some(real_less_equal(counter, end_value))
     }
 
-    /// The line a jump reaches; `Ok(None)` when it goes on with the next block (GOTOS without a
-    /// restart, GOTOC to a missing target), `Err` when the target cannot be known.
-    #[allow(clippy::too_many_arguments)]
-    fn jump_target(
-        &mut self,
-        engine: &Engine<'a>,
-        unit: &ProgramUnit,
-        block: &Block,
-        line: &str,
-        pc: usize,
-        kind: JumpKind,
-        target: &JumpTarget,
-    ) -> Result<Option<usize>, ()> {
-        let _ = (engine, block);
-        if kind == JumpKind::Gotos {
-            return match self.options.gotos_restarts {
-                Some(true) => Ok(Some(unit.flow.first_executable)),
-                Some(false) => Ok(None),
-                None => Err(()),
-            };
-        }
-        let candidates: &[usize] = match target {
-            JumpTarget::Label(span) => {
-                let name = line[span.start()..span.end()].to_ascii_uppercase();
-                unit.flow.label_lines(&name)
-            }
-            JumpTarget::BlockNumber { value, .. } => unit.flow.block_number_lines(*value),
-            JumpTarget::Computed(_) | JumpTarget::None => return Err(()),
-        };
-        match resolve_jump(kind, pc, candidates) {
-            JumpResolution::Found(target_line) => Ok(Some(target_line)),
-            _ if kind == JumpKind::Gotoc => Ok(None),
-            // The control stops with alarm 14080 (reported as W304/W305); nothing runs after it.
-            _ => Err(()),
-        }
-    }
-
     /// Continues the way at `target` of the same level: forward, or backward as the next pass of a
     /// loop, counted against the pass limit and checked for a state that never changes.
     pub(super) fn transfer(
@@ -421,18 +391,18 @@ impl<'a, 's> Interpreter<'a, 's> {
             return Next::Line(target);
         }
         let depth = control.levels.len() - 1;
-        if let Some(position) = control
+        let unknown = control
             .unknown_loops
             .iter()
-            .position(|unknown| unknown.depth == depth && unknown.head == target)
-        {
-            return self.widen(control, engine, position, target);
-        }
+            .position(|unknown| unknown.depth == depth && unknown.head == target);
+        // The passes of a loop whose passes are not known are not counted: ways in it meet whatever
+        // pass they are in.
+        let counted = u32::from(unknown.is_none());
         let next_fork = self.next_fork;
         let level = control.level_mut();
         let (passes, mark) = match level.loops.last_mut() {
             Some(frame) if frame.back_to == target => {
-                frame.passes += 1;
+                frame.passes += counted;
                 (
                     frame.passes,
                     std::mem::replace(&mut frame.fork_mark, next_fork),
@@ -450,23 +420,29 @@ impl<'a, 's> Interpreter<'a, 's> {
                     .find(|(line, _)| *line == target)
                 {
                     Some((_, passes)) => {
-                        *passes += 1;
+                        *passes += counted;
                         *passes
                     }
                     None => {
-                        level.jump_passes.push((target, 1));
-                        1
+                        level.jump_passes.push((target, counted));
+                        counted
                     }
                 };
                 (passes, mark)
             }
         };
+        if let Some(position) = unknown {
+            return self.widen(control, engine, position, target, mark);
+        }
         // A way that still depends on a condition met in this pass and decided neither way: whether
         // and when the loop ends is not known.
-        if control.forks.iter().any(|(decision, _)| *decision >= mark) {
+        if control
+            .open_decisions(&self.covered)
+            .any(|decision| decision >= mark)
+        {
             mark_unknown_loop(control, depth, target, pc);
             let position = control.unknown_loops.len() - 1;
-            return self.widen(control, engine, position, target);
+            return self.widen(control, engine, position, target, mark);
         }
         if passes > self.options.max_loop_passes {
             self.report(
@@ -481,7 +457,7 @@ impl<'a, 's> Interpreter<'a, 's> {
             );
             mark_unknown_loop(control, depth, target, pc);
             let position = control.unknown_loops.len() - 1;
-            return self.widen(control, engine, position, target);
+            return self.widen(control, engine, position, target, mark);
         }
         if passes % ENDLESS_CHECK_INTERVAL == 0 {
             let key = (depth, control.level().unit, target);
@@ -503,13 +479,15 @@ impl<'a, 's> Interpreter<'a, 's> {
 
     /// The next pass of a loop whose passes are not known: the state at its head joins the state of
     /// this pass; when nothing changes any more, every way out of the loop has been seen and this way
-    /// ends.
+    /// ends. The way of the decisions of its last pass (from `pass_mark` on) goes on as an earlier
+    /// pass did: the ways that took them the other way are no longer conditional on them.
     fn widen(
         &mut self,
         control: &mut Control,
         engine: &mut Engine<'a>,
         position: usize,
         target: usize,
+        pass_mark: u32,
     ) -> Next {
         let snapshot = engine.snapshot();
         let unknown = &mut control.unknown_loops[position];
@@ -519,6 +497,12 @@ impl<'a, 's> Interpreter<'a, 's> {
                 let mut joined = stored.clone();
                 joined.join(&snapshot);
                 if joined == *stored {
+                    self.covered.extend(
+                        control
+                            .forks
+                            .iter()
+                            .filter(|(decision, _)| *decision >= pass_mark),
+                    );
                     return Next::Stop;
                 }
                 *stored = joined.clone();

@@ -7,9 +7,10 @@ use crate::analysis::execution::assumptions::reset_assumptions;
 use crate::analysis::execution::entry::RunSetup;
 use crate::analysis::execution::first_pass::FirstPasses;
 use crate::analysis::execution::library_macros::LibraryMacros;
-use crate::analysis::execution::paths::{Activation, Control, UnknownLoop, Way};
+use crate::analysis::execution::paths::{Activation, Control, UnknownLoop, Way, MAX_FORKS};
 use crate::analysis::execution::program::ProgramUnit;
 use crate::analysis::execution::resume::Recorder;
+use crate::analysis::execution::tables::table_mark;
 use crate::analysis::execution::{
     EntryState, ExecutedMove, Execution, ExecutionOptions, ProgramEnd,
 };
@@ -25,9 +26,6 @@ use std::sync::Arc;
 /// Undecided conditions in one run after which the rest is read in program order: a program whose
 /// every way depends on data the analysis does not have is not worth following further.
 const MAX_DECISIONS: u32 = 20_000;
-
-/// The undecided conditions a way remembers (it is conditional as long as it remembers one).
-const MAX_FORKS: usize = 64;
 
 /// Where a way goes after a block.
 pub(super) enum Next {
@@ -66,6 +64,10 @@ pub struct Interpreter<'a, 's> {
     /// The ways that wait, in no particular order.
     pending: Vec<Way>,
     pub(super) next_fork: u32,
+    /// Decisions taken on a way that ended because its loop's state no longer changed: that way goes
+    /// on as an earlier pass did, so a way that took such a decision the other way does not depend
+    /// on it.
+    pub(super) covered: HashSet<(u32, bool)>,
     pub(super) assumed: Vec<(&'static str, String)>,
     /// Checkpoints, pass records and the place to rejoin an earlier run, when the run is recorded
     /// for running again after an edit (`resume.rs`).
@@ -105,6 +107,7 @@ impl<'a, 's> Interpreter<'a, 's> {
             executed: 0,
             pending: Vec::new(),
             next_fork: 0,
+            covered: HashSet::new(),
             assumed: Vec::new(),
             recorder: None,
             loop_heads: HashMap::new(),
@@ -385,11 +388,19 @@ impl<'a, 's> Interpreter<'a, 's> {
             if call.is_some() {
                 engine.follow_call_of_next_block();
             }
+            let table = table_mark(&block, line);
+            if let Some(mark) = table {
+                self.table_start(control, engine, mark);
+            }
             self.scratch.clear();
-            let moved = engine.step(line, &block, &mut self.scratch);
+            let moved = engine.step(line, &block, &mut self.scratch)
+                && control.level().curve_table.is_none();
             self.update_assumptions(control, engine, line, &block);
             if moved && !self.counting && !control.widening() {
                 self.record_move(control, engine, unit_index, pc, line, &block);
+            }
+            if let Some(mark) = table {
+                self.table_end(control, engine, mark);
             }
             let modal = self.modal_call_after(control, engine, &block, pc, moved);
             let callee = call.as_ref().or(modal.as_ref()).map(|call| call.unit());
@@ -442,7 +453,7 @@ impl<'a, 's> Interpreter<'a, 's> {
             path: self.units[unit_index].path.clone(),
             stack: Arc::clone(&level.stack),
             pass,
-            conditional: !control.forks.is_empty(),
+            conditional: { control.open_decisions(&self.covered).next().is_some() },
             assumed,
         });
         if let Some(recorder) = self.recorder.as_mut() {

@@ -16,12 +16,14 @@ mod control;
 pub mod entry;
 pub mod first_pass;
 mod interpreter;
+mod jump_targets;
 pub mod library_macros;
 mod paths;
 pub mod program;
 mod recorded;
 mod repeats;
 mod resume;
+mod tables;
 
 use crate::analysis::library::ProgramLibrary;
 use crate::analysis::{Move, ProgramKind};

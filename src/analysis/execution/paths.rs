@@ -8,7 +8,12 @@ use crate::analysis::execution::CallSite;
 use crate::analysis::frame::Frame;
 use crate::analysis::state::GROUP_COUNT;
 use crate::syntax::gcodes::GCode;
+use std::collections::HashSet;
 use std::sync::Arc;
+
+/// The decisions a way remembers, both ways of a joined decision included (it is conditional as long
+/// as it remembers one that only one of its ways took).
+pub const MAX_FORKS: usize = 128;
 
 /// A loop of a control structure that a way is in.
 #[derive(Debug, Clone, PartialEq)]
@@ -80,6 +85,9 @@ pub struct Activation {
     pub repeats: Vec<RepeatFrame>,
     /// The calls that led here, outermost first (shared by every move of the level).
     pub stack: Arc<[CallSite]>,
+    /// Inside a curve table definition (`CTABDEF` … `CTABEND`): the state before it, which its end
+    /// restores. Its blocks move no axis.
+    pub curve_table: Option<Box<EngineSnapshot>>,
 }
 
 impl Activation {
@@ -95,6 +103,7 @@ impl Activation {
             label_marks: Vec::new(),
             repeats: Vec::new(),
             stack: Arc::from(Vec::new()),
+            curve_table: None,
         }
     }
 }
@@ -128,7 +137,8 @@ pub struct UnknownLoop {
 #[derive(Debug, Clone, PartialEq)]
 pub struct Control {
     pub levels: Vec<Activation>,
-    /// The undecided conditions this way depends on: (decision, which way).
+    /// The undecided conditions this way took, ordered: (decision, which way). A decision taken both
+    /// ways is one of joined ways, which no longer depends on it.
     pub forks: Vec<(u32, bool)>,
     pub unknown_loops: Vec<UnknownLoop>,
     /// The G groups (bits by group number) whose value is still the assumed entry state.
@@ -180,6 +190,22 @@ impl Control {
         })
     }
 
+    /// The undecided conditions the way depends on: those of its decisions whose other way has not
+    /// joined it and does not go on as an earlier pass of a loop (`covered`). The list is in the
+    /// order of the decisions.
+    pub fn open_decisions<'c>(
+        &'c self,
+        covered: &'c HashSet<(u32, bool)>,
+    ) -> impl Iterator<Item = u32> + 'c {
+        self.forks
+            .iter()
+            .filter(|&&(decision, way)| {
+                self.forks.binary_search(&(decision, !way)).is_err()
+                    && !covered.contains(&(decision, !way))
+            })
+            .map(|(decision, _)| *decision)
+    }
+
     /// Drops the unknown loops that the way has left.
     pub fn leave_loops(&mut self) {
         let depth = self.levels.len() - 1;
@@ -213,6 +239,7 @@ impl Control {
                     && mine.retest_for == theirs.retest_for
                     && mine.modal_call == theirs.modal_call
                     && mine.repeats == theirs.repeats
+                    && mine.curve_table.is_some() == theirs.curve_table.is_some()
                     && mine
                         .loops
                         .iter()
@@ -223,10 +250,20 @@ impl Control {
             })
     }
 
-    /// Joins what the two ways know about their decisions: a decision both ways took differently is
-    /// no longer one this way depends on.
+    /// Joins what the two ways know about their decisions: a decision the two ways took differently
+    /// is no longer one the joined way depends on (both ways stay in the list, so that a way joined
+    /// later that took one of them does not make it one again). A decision only one of them depends
+    /// on stays: the joined way is reached on that way only when the decision goes its way (a way
+    /// that jumped at one undecided condition meeting a way that jumped at another is still
+    /// conditional, and still depends on conditions met in the current pass of a loop).
     pub fn join(&mut self, other: &Control) {
-        self.forks.retain(|fork| other.forks.contains(fork));
+        let mut forks: Vec<(u32, bool)> = self.forks.iter().chain(&other.forks).copied().collect();
+        forks.sort_unstable();
+        forks.dedup();
+        // The list keeps the newest decisions, which the loops' pass marks compare with.
+        let excess = forks.len().saturating_sub(MAX_FORKS);
+        forks.drain(..excess);
+        self.forks = forks;
         self.assumed_groups |= other.assumed_groups;
         self.assumed_axes |= other.assumed_axes;
         for unknown in &other.unknown_loops {
@@ -237,6 +274,9 @@ impl Control {
             }
         }
         for (mine, theirs) in self.levels.iter_mut().zip(&other.levels) {
+            if let (Some(table), Some(other_table)) = (&mut mine.curve_table, &theirs.curve_table) {
+                table.join(other_table);
+            }
             if let (Some(mine), Some(theirs)) = (mine.call.as_mut(), theirs.call.as_ref()) {
                 mine.caller_locals.join(&theirs.caller_locals);
                 if let (Some(saved), Some(other_saved)) = (mine.saved.as_mut(), &theirs.saved) {

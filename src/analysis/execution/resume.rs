@@ -10,6 +10,11 @@
 //! it looks for a checkpoint of the earlier run at the same place with the same state, after which
 //! the earlier run never executed an edited line and before which both runs executed every line
 //! equally often: from there the earlier run's moves, findings and checkpoints are the new run's.
+//!
+//! What a checkpoint leaves out is what cannot change the rest of a run from a simple state: the
+//! decisions that ended on a loop's unchanged state (`covered`) and the undecided-condition marks of
+//! labels and loops only matter for decisions a way still depends on, and a simple way depends on
+//! none; every later decision has a higher number.
 
 use crate::analysis::engine::{Engine, EngineSnapshot};
 use crate::analysis::execution::interpreter::Interpreter;
