@@ -8,7 +8,8 @@ use crate::analysis::execution::entry::RunSetup;
 use crate::analysis::execution::first_pass::PassState;
 use crate::analysis::execution::library_macros::LibraryMacros;
 use crate::analysis::execution::{entry_assumptions, ExecutionOptions, RESET_SOURCE};
-use crate::analysis::execution::{execute_with, program::ProgramUnit, ExecutedMove, Execution};
+use crate::analysis::execution::{program::ProgramUnit, ExecutedMove};
+use crate::analysis::execution::{resume_run, run_recorded, RecordedRun};
 use crate::analysis::library::ProgramLibrary;
 use crate::analysis::ProgramKind;
 use crate::config::MachineConfig;
@@ -21,26 +22,28 @@ pub enum DocumentExecution {
     /// A main program without labels, jumps, structures or calls: every block runs once, in program
     /// order, from the reset state; the document's analysis has its moves.
     InOrder,
-    /// The moves of the run, with the run's findings and assumptions.
+    /// The run with its moves, findings and assumptions, and the record to run it again after an
+    /// edit.
     Executed {
-        execution: Execution,
-        moves: Vec<ExecutedMove>,
+        run: Arc<RecordedRun>,
         assumed: Vec<(&'static str, String)>,
-        /// Per line of the document, the indexes of its moves in `moves` (a call line: the moves the
-        /// call causes), in execution order.
+        /// Per line of the document, the indexes of its moves in `order` (a call line: the moves
+        /// the call causes).
         by_line: Vec<Range<u32>>,
-        /// `moves` sorted by their outer line: the index into `moves` of each, in order.
+        /// The indexes of the moves sorted by their outer line, in execution order within a line.
         order: Vec<u32>,
     },
 }
 
-/// Runs the document held by `source`.
+/// Runs the document held by `source`; `earlier`, the run of an earlier revision with the same
+/// configuration, is resumed when the edit allows it.
 pub fn execute_document(
     source: &dyn LineSource,
     config: &MachineConfig,
     kind: ProgramKind,
     library: &dyn ProgramLibrary,
     options: &ExecutionOptions,
+    earlier: Option<&DocumentExecution>,
 ) -> DocumentExecution {
     let mut text = String::new();
     source.for_each_line(0, &mut |_, line| {
@@ -50,71 +53,97 @@ pub fn execute_document(
     });
     let text: Arc<str> = Arc::from(text);
     let subprogram = kind == ProgramKind::Subprogram || crate::analysis::has_proc_header(&text);
-    if !subprogram {
-        // A macro of a definition file reads like a call: a program that uses one runs.
-        let macros = LibraryMacros::read(library, config);
-        let unit = ProgramUnit::with_macro_names(
-            String::new(),
-            None,
-            Arc::clone(&text),
-            config,
-            macros.names(),
-        );
-        if !unit.flow.has_flow {
-            return DocumentExecution::InOrder;
-        }
-    }
     let setup = RunSetup {
         entry: subprogram.then(|| library.caller_entry()).flatten(),
         record_first_passes: true,
     };
-    let mut moves = Vec::new();
-    let execution = execute_with(
-        &text,
-        config,
-        kind,
-        library,
-        options,
-        &setup,
-        &mut |movement| moves.push(movement),
-    );
+    let resumed = match earlier {
+        Some(DocumentExecution::Executed { run, .. }) => resume_run(
+            Arc::clone(&text),
+            config,
+            kind,
+            library,
+            options,
+            &setup,
+            run,
+        ),
+        _ => None,
+    };
+    let run = match resumed {
+        Some(run) => run,
+        None => {
+            if !subprogram {
+                // A macro of a definition file reads like a call: a program that uses one runs.
+                let macros = LibraryMacros::read(library, config);
+                let unit = ProgramUnit::with_macro_names(
+                    String::new(),
+                    None,
+                    Arc::clone(&text),
+                    config,
+                    macros.names(),
+                );
+                if !unit.flow.has_flow {
+                    return DocumentExecution::InOrder;
+                }
+            }
+            run_recorded(
+                Arc::clone(&text),
+                config,
+                kind,
+                library,
+                options,
+                &setup,
+                None,
+            )
+        }
+    };
     // From the call sites, the run says what it started from; else the reset state is assumed.
     let assumed = match setup.entry {
-        Some(_) => execution.assumed.clone(),
+        Some(_) => run.execution.assumed.clone(),
         None => entry_assumptions(&text, config, kind, options),
     };
-    let mut order: Vec<u32> = (0..moves.len() as u32).collect();
-    order.sort_by_key(|&index| moves[index as usize].outer_line());
-    let line_count = source.line_count();
-    let mut by_line = vec![0..0; line_count];
-    let mut start = 0;
-    while start < order.len() {
-        let line = moves[order[start] as usize].outer_line();
-        let mut end = start;
-        while end < order.len() && moves[order[end] as usize].outer_line() == line {
-            end += 1;
-        }
-        if let Some(slot) = by_line.get_mut(line) {
-            *slot = start as u32..end as u32;
-        }
-        start = end;
-    }
+    let (by_line, order) = index_by_line(&run.moves, source.line_count());
     DocumentExecution::Executed {
-        execution,
-        moves,
+        run: Arc::new(run),
         assumed,
         by_line,
         order,
     }
 }
 
+/// The moves grouped by their outer line (a counting sort: execution order stays within a line).
+fn index_by_line(moves: &[ExecutedMove], line_count: usize) -> (Vec<Range<u32>>, Vec<u32>) {
+    let mut counts = vec![0u32; line_count + 1];
+    for executed in moves {
+        counts[executed.outer_line().min(line_count)] += 1;
+    }
+    let mut by_line = Vec::with_capacity(line_count);
+    let mut starts = Vec::with_capacity(line_count + 1);
+    let mut start = 0u32;
+    for (line, &count) in counts.iter().enumerate() {
+        starts.push(start);
+        if line < line_count {
+            by_line.push(start..start + count);
+        }
+        start += count;
+    }
+    let mut order = vec![0u32; moves.len()];
+    for (index, executed) in moves.iter().enumerate() {
+        let slot = &mut starts[executed.outer_line().min(line_count)];
+        order[*slot as usize] = index as u32;
+        *slot += 1;
+    }
+    (by_line, order)
+}
+
 impl DocumentExecution {
     /// The moves whose outer line is in `lines`, in execution order; `None` when the document runs
     /// in program order.
     pub fn moves_in(&self, lines: Range<usize>) -> Option<Vec<&ExecutedMove>> {
-        let DocumentExecution::Executed { moves, order, .. } = self else {
+        let DocumentExecution::Executed { run, order, .. } = self else {
             return None;
         };
+        let moves = &run.moves;
         let first =
             order.partition_point(|&index| moves[index as usize].outer_line() < lines.start);
         let last = order.partition_point(|&index| moves[index as usize].outer_line() < lines.end);
@@ -134,11 +163,12 @@ impl DocumentExecution {
         match self {
             DocumentExecution::InOrder => Vec::new(),
             DocumentExecution::Executed {
-                moves,
+                run,
                 by_line,
                 order,
                 ..
             } => {
+                let moves = &run.moves;
                 let Some(range) = by_line.get(line) else {
                     return Vec::new();
                 };
@@ -157,7 +187,7 @@ impl DocumentExecution {
     pub fn passes_of_line(&self, line: usize) -> u32 {
         match self {
             DocumentExecution::InOrder => 1,
-            DocumentExecution::Executed { execution, .. } => execution.passes_of_line(line),
+            DocumentExecution::Executed { run, .. } => run.execution.passes_of_line(line),
         }
     }
 
@@ -165,18 +195,18 @@ impl DocumentExecution {
     pub fn findings(&self) -> &[crate::diagnostics::LineDiagnostic] {
         match self {
             DocumentExecution::InOrder => &[],
-            DocumentExecution::Executed { execution, .. } => &execution.findings,
+            DocumentExecution::Executed { run, .. } => &run.execution.findings,
         }
     }
 
     /// The modal state after the first execution of `line` and how often the line runs; `None` for
     /// a document that runs in program order, or a line that never runs.
     pub fn first_pass(&self, line: usize) -> Option<(&PassState, u32)> {
-        let DocumentExecution::Executed { execution, .. } = self else {
+        let DocumentExecution::Executed { run, .. } = self else {
             return None;
         };
-        let state = execution.first_passes.as_ref()?.state(line)?;
-        Some((state, execution.passes_of_line(line)))
+        let state = run.execution.first_passes.as_ref()?.state(line)?;
+        Some((state, run.execution.passes_of_line(line)))
     }
 
     /// What was assumed about the entry state.
@@ -217,9 +247,10 @@ fn call_summary(
     line: usize,
     called: &[&&ExecutedMove],
 ) -> Option<String> {
-    let DocumentExecution::Executed { execution: run, .. } = execution else {
+    let DocumentExecution::Executed { run, .. } = execution else {
         return None;
     };
+    let run = &run.execution;
     let recorded = run
         .first_passes
         .as_ref()
@@ -361,6 +392,7 @@ mod tests {
             kind,
             &NoLibrary,
             &ExecutionOptions::default(),
+            None,
         )
     }
 

@@ -81,12 +81,17 @@ impl Analysed {
                 return Arc::clone(execution);
             }
         }
+        // The run of an earlier revision is resumed where the edit allows it (`execution/recorded.rs`).
+        let earlier = cached
+            .as_ref()
+            .map(|(_, _, execution)| Arc::clone(execution));
         let execution = Arc::new(execute_document(
             &self.lines(),
             &self.config,
             self.analysis.kind(),
             library,
             &self.config.execution,
+            earlier.as_deref(),
         ));
         *cached = Some((self.revision, generation, Arc::clone(&execution)));
         execution

@@ -105,6 +105,6 @@ pub fn preview_file(
     let source = read_source_file(path).map_err(|error| format!("{}: {error}", path.display()))?;
     let text_lines = TextLines::new(&source.text);
     let analysis = DocumentAnalysis::new(&text_lines, Arc::clone(&config), kind);
-    let execution = execute_document(&text_lines, &config, kind, library, &config.execution);
+    let execution = execute_document(&text_lines, &config, kind, library, &config.execution, None);
     preview(&analysis, &execution, &text_lines, label, lines)
 }

@@ -416,13 +416,16 @@ pub fn refresh_diagnostics(shared: &Arc<Shared>) {
         // at the next refresh, which its edit starts. The library takes the index's lock itself.
         if snapshot.revision == built {
             let library = crate::lsp::library::workspace_library(shared, document.path.as_deref());
-            let run = crate::analysis::execution::execution_findings(
-                &snapshot.rope.to_string(),
-                &snapshot.config,
-                document.kind,
-                library.as_ref(),
-                &snapshot.config.execution,
-            );
+            // The document's own run of this revision: the hover and the toolpath ask for the same
+            // one, and it resumes the run of the previous revision where the edit allows it.
+            let analysed = document.catch_up();
+            let run = match analysed.as_ref() {
+                Some(analysed) if analysed.revision == built => {
+                    analysed.execution(library.as_ref()).findings().to_vec()
+                }
+                _ => Vec::new(),
+            };
+            drop(analysed);
             if !run.is_empty() {
                 findings.extend(run);
                 findings.sort_by_key(|item| (item.line, item.diagnostic.span.start()));

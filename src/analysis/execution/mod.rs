@@ -33,7 +33,7 @@ use crate::syntax::ast::{AddressKind, AddressWord, ValueExpr};
 use std::sync::Arc;
 
 pub use crate::config::execution::{EntryState, ExecutionOptions};
-pub use recorded::{run_recorded, RecordedRun, RunStart};
+pub use recorded::{resume_run, run_recorded, RecordedRun, RunStart};
 
 /// Where a called program was called from.
 #[derive(Debug, Clone, PartialEq, Eq)]

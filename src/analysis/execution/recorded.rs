@@ -124,6 +124,27 @@ pub fn run_recorded(
     parts.into_run(moves, end, RunStart::Fresh, &context, macros, None)
 }
 
+/// The run of `text` resumed from `earlier`, when the edit allows it (see the module's comment);
+/// `None` when the program must run from its first block.
+#[allow(clippy::too_many_arguments)]
+pub fn resume_run(
+    text: Arc<str>,
+    config: &MachineConfig,
+    kind: ProgramKind,
+    library: &dyn ProgramLibrary,
+    options: &ExecutionOptions,
+    setup: &RunSetup,
+    earlier: &RecordedRun,
+) -> Option<RecordedRun> {
+    let context = RunContext {
+        kind,
+        options,
+        setup,
+        macro_files: library.macro_files(),
+    };
+    run_again(&text, config, library, &context, earlier)
+}
+
 /// What a run depends on besides the program's text and the called programs.
 struct RunContext<'c> {
     kind: ProgramKind,
