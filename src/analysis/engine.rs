@@ -386,16 +386,20 @@ impl<'a> Engine<'a> {
     /// Forgets what a call of a program the analysis cannot see may change: positions, variables,
     /// frames and the settable offsets' data.
     pub fn forget_after_unknown_call(&mut self) {
-        self.forget_what_a_call_may_change(true);
+        self.forget_what_a_call_may_change(true, true);
     }
 
     /// Forgets what a called program may change; the settable frames' data only when
     /// `frame_data_changed` (a call, a kinematic change), not after a tool change.
-    fn forget_what_a_call_may_change(&mut self, frame_data_changed: bool) {
+    fn forget_what_a_call_may_change(&mut self, frame_data_changed: bool, locals: bool) {
         // The callee may have programmed a feed, so a later feed move without F is not reported.
         self.missing_feed_reported = true;
         self.state.forget_positions();
-        self.state.variables.forget_all();
+        if locals {
+            self.state.variables.forget_all();
+        } else {
+            self.state.variables.forget_global();
+        }
         self.state.frame = None;
         self.tangent = None;
         // The callee may select another settable offset; it is read again when the program
@@ -595,6 +599,9 @@ impl<'a> Engine<'a> {
         let mut polar = PolarWords::default();
         let plane_before = self.state.plane_index();
         let mut forget_after = forget_for_frames;
+        // A tool change alone runs a cycle without arguments: with MD11120 = 0 it cannot reach the
+        // variables this program level defined (reference §17.6), only R parameters and global data.
+        let mut locals_may_change = forget_for_frames;
         // A call or a kinematic change may also write the settable frames' data (measuring cycles do).
         let mut frame_data_changed = forget_for_frames;
         let mut circle_words = CircleWords::default();
@@ -706,12 +713,14 @@ impl<'a> Engine<'a> {
                 }
                 Statement::Call { kind, .. } if *kind != CallKind::Modal && !call_followed => {
                     forget_after = true;
+                    locals_may_change = true;
                     frame_data_changed = true;
                 }
                 Statement::Instruction { name, .. } => {
                     let upper = line[name.start()..name.end()].to_ascii_uppercase();
                     if changes_kinematics(&upper) {
                         forget_after = true;
+                        locals_may_change = true;
                         frame_data_changed = true;
                     }
                 }
@@ -856,7 +865,7 @@ impl<'a> Engine<'a> {
         self.last_arc = arc;
         self.start_positions = start_positions;
         if forget_after {
-            self.forget_what_a_call_may_change(frame_data_changed);
+            self.forget_what_a_call_may_change(frame_data_changed, locals_may_change);
         }
         result
     }

@@ -412,6 +412,18 @@ impl Variables {
         }
     }
 
+    /// Forgets what a called program without arguments can write: the R parameters and the names
+    /// assigned without a definition (global data); the variables this level defined stay
+    /// (reference §17.6, MD11120 = 0).
+    pub fn forget_global(&mut self) {
+        self.r_parameters.clear();
+        for variable in self.named.values_mut() {
+            if variable.var_type.is_none() {
+                variable.forget();
+            }
+        }
+    }
+
     /// Puts aside the defined variables of the running program level when it calls a subprogram (LUD
     /// variables belong to their level, reference §17.6); R parameters and names assigned without a
     /// definition (global variables) stay visible.
