@@ -150,8 +150,8 @@ pub struct LineDiagnostic {
 macro_rules! codes {
     ($( $variant:ident = $text:literal, $severity:ident, $summary:literal; )*) => {
         /// Every diagnostic the product can report. The text form (`S101`, ...) is stable: it is
-        /// documented in the README, used in configuration files and must never be reused for
-        /// another meaning.
+        /// documented in docs/diagnostics.md, used in configuration files and must never be reused
+        /// for another meaning.
         #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
         pub enum Code {
             $( $variant, )*

@@ -1,5 +1,6 @@
 //! The server's own protocol additions: the `sinumerik.endpointPreview` command's arguments.
-//! Its result is the JSON document of `sinumerik-lsp preview` (see the README).
+//! Its result is the JSON document of `sinumerik-lsp preview` (see docs/cli.md; the requests are
+//! described in docs/server.md, "Custom requests and commands").
 
 use serde::Deserialize;
 use tower_lsp_server::ls_types::Uri;

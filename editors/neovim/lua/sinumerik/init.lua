@@ -14,7 +14,7 @@ M.NUMBERING_MODES = { 'keep', 'all', 'drop' }
 local defaults = {
   -- The server command; the binary must be on PATH unless a full path is given.
   cmd = { 'sinumerik-lsp', 'serve' },
-  -- The `sinumerik` settings section (see the README): inlayHints, machineKind, configFile,
+  -- The `sinumerik` settings section (see docs/server.md, Settings): inlayHints, machineKind, configFile,
   -- maxDiagnostics (0: every finding; Neovim shows them all).
   settings = {
     inlayHints = 'notPlain',
