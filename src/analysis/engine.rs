@@ -711,9 +711,15 @@ impl<'a> Engine<'a> {
                 } => {
                     self.apply_definition(line, block, *data_type, declarators, diagnostics);
                 }
-                Statement::Call { kind, .. } if *kind != CallKind::Modal && !call_followed => {
+                Statement::Call { kind, args, .. }
+                    if *kind != CallKind::Modal && !call_followed =>
+                {
                     forget_after = true;
-                    locals_may_change = true;
+                    // Only a `VAR` parameter reaches the caller's own variables, and only a variable
+                    // can be passed to one.
+                    locals_may_change |= args.iter().flatten().any(|&argument| {
+                        matches!(block.expr(argument).kind, ExprKind::Name { .. })
+                    });
                     frame_data_changed = true;
                 }
                 Statement::Instruction { name, .. } => {

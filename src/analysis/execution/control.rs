@@ -411,20 +411,19 @@ impl<'a, 's> Interpreter<'a, 's> {
             _ => {
                 let mark = level
                     .label_marks
-                    .iter()
-                    .find(|(labelled, _)| *labelled == target)
-                    .map_or(0, |(_, mark)| *mark);
+                    .binary_search_by_key(&target, |&(labelled, _)| labelled)
+                    .map_or(0, |index| level.label_marks[index].1);
+                // Both lists are sorted by line, so that programs with many loops of jumps stay fast.
                 let passes = match level
                     .jump_passes
-                    .iter_mut()
-                    .find(|(line, _)| *line == target)
+                    .binary_search_by_key(&target, |&(line, _)| line)
                 {
-                    Some((_, passes)) => {
-                        *passes += counted;
-                        *passes
+                    Ok(index) => {
+                        level.jump_passes[index].1 += counted;
+                        level.jump_passes[index].1
                     }
-                    None => {
-                        level.jump_passes.push((target, counted));
+                    Err(index) => {
+                        level.jump_passes.insert(index, (target, counted));
                         counted
                     }
                 };

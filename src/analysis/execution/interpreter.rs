@@ -373,9 +373,10 @@ impl<'a, 's> Interpreter<'a, 's> {
         if block.label.is_some() {
             let mark = self.next_fork;
             let marks = &mut control.level_mut().label_marks;
-            match marks.iter_mut().find(|(labelled, _)| *labelled == pc) {
-                Some((_, value)) => *value = mark,
-                None => marks.push((pc, mark)),
+            // Sorted by line (see `transfer`).
+            match marks.binary_search_by_key(&pc, |&(labelled, _)| labelled) {
+                Ok(index) => marks[index].1 = mark,
+                Err(index) => marks.insert(index, (pc, mark)),
             }
         }
         self.first_pass_before(control, engine, unit_index);

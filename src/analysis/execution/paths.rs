@@ -76,10 +76,11 @@ pub struct Activation {
     pub retest_for: Option<usize>,
     /// The modal call (`MCALL NAME(..)`) active on this level.
     pub modal_call: Option<ModalCall>,
-    /// Backward jumps taken to each target line (for the pass limit of loops made of jumps).
+    /// Backward jumps taken to each target line (for the pass limit of loops made of jumps), sorted
+    /// by line.
     pub jump_passes: Vec<(usize, u32)>,
     /// Per labelled line, the number of the next undecided condition when the way last ran it: the
-    /// start of a pass of a loop made of a backward jump to that label.
+    /// start of a pass of a loop made of a backward jump to that label. Sorted by line.
     pub label_marks: Vec<(usize, u32)>,
     /// Section repetitions in progress, the innermost last.
     pub repeats: Vec<RepeatFrame>,
