@@ -61,18 +61,28 @@ pub struct Analysed {
     pub revision: u64,
     config: Arc<MachineConfig>,
     /// The run of the document (`ide::execution`), made when a feature first asks for it and kept
-    /// for the revision it ran.
-    execution: Mutex<Option<(u64, u64, Arc<DocumentExecution>)>>,
+    /// for the revision and library generation it ran with. Shared, so that a run can be made
+    /// without holding the document's analysis (see [`ExecutionJob`]).
+    execution: Arc<Mutex<CachedExecution>>,
 }
 
-impl Analysed {
-    pub fn lines(&self) -> RopeLines<'_> {
-        RopeLines::new(&self.rope)
-    }
+type CachedExecution = Option<(u64, u64, Arc<DocumentExecution>)>;
 
-    /// The run of this revision of the document, made now if no feature asked for it before.
-    pub fn execution(&self, library: &dyn ProgramLibrary) -> Arc<DocumentExecution> {
-        let mut cached = lock(&self.execution);
+/// What running one revision of a document needs, taken from its analysis so that the run (seconds
+/// for a large program with many loops) does not hold the analysis, which every edit needs.
+pub struct ExecutionJob {
+    rope: Rope,
+    revision: u64,
+    config: Arc<MachineConfig>,
+    kind: crate::analysis::ProgramKind,
+    cache: Arc<Mutex<CachedExecution>>,
+}
+
+impl ExecutionJob {
+    /// The run of the job's revision: the cached one, or made now (resuming the previous revision's
+    /// run where the edit allows it). Runs asked for at once wait for one another.
+    pub fn run(&self, library: &dyn ProgramLibrary) -> Arc<DocumentExecution> {
+        let mut cached = lock(&self.cache);
         // Another file's change (a callee, a caller, a macro file) advances the library's generation:
         // the run is made again for it.
         let generation = library.generation();
@@ -86,15 +96,43 @@ impl Analysed {
             .as_ref()
             .map(|(_, _, execution)| Arc::clone(execution));
         let execution = Arc::new(execute_document(
-            &self.lines(),
+            &RopeLines::new(&self.rope),
             &self.config,
-            self.analysis.kind(),
+            self.kind,
             library,
             &self.config.execution,
             earlier.as_deref(),
         ));
-        *cached = Some((self.revision, generation, Arc::clone(&execution)));
+        // A newer revision's run may have been stored meanwhile: it stays.
+        let newer = cached
+            .as_ref()
+            .is_some_and(|(revision, _, _)| *revision > self.revision);
+        if !newer {
+            *cached = Some((self.revision, generation, Arc::clone(&execution)));
+        }
         execution
+    }
+}
+
+impl Analysed {
+    pub fn lines(&self) -> RopeLines<'_> {
+        RopeLines::new(&self.rope)
+    }
+
+    /// The run of this revision of the document, made now if no feature asked for it before.
+    pub fn execution(&self, library: &dyn ProgramLibrary) -> Arc<DocumentExecution> {
+        self.execution_job().run(library)
+    }
+
+    /// What running this revision needs, to run it after letting go of the analysis.
+    pub fn execution_job(&self) -> ExecutionJob {
+        ExecutionJob {
+            rope: self.rope.clone(),
+            revision: self.revision,
+            config: Arc::clone(&self.config),
+            kind: self.analysis.kind(),
+            cache: Arc::clone(&self.execution),
+        }
     }
 }
 
@@ -399,7 +437,7 @@ impl OpenDocument {
                         version,
                         revision,
                         config,
-                        execution: Mutex::new(None),
+                        execution: Arc::new(Mutex::new(None)),
                     });
                     return slot;
                 }

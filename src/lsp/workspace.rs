@@ -418,14 +418,15 @@ pub fn refresh_diagnostics(shared: &Arc<Shared>) {
             let library = crate::lsp::library::workspace_library(shared, document.path.as_deref());
             // The document's own run of this revision: the hover and the toolpath ask for the same
             // one, and it resumes the run of the previous revision where the edit allows it.
-            let analysed = document.catch_up();
-            let run = match analysed.as_ref() {
-                Some(analysed) if analysed.revision == built => {
-                    analysed.execution(library.as_ref()).findings().to_vec()
-                }
-                _ => Vec::new(),
-            };
-            drop(analysed);
+            let job = document
+                .catch_up()
+                .as_ref()
+                .filter(|analysed| analysed.revision == built)
+                .map(|analysed| analysed.execution_job());
+            // The run does not hold the analysis: an edit meanwhile is analysed and published.
+            let run = job.map_or_else(Vec::new, |job| {
+                job.run(library.as_ref()).findings().to_vec()
+            });
             if !run.is_empty() {
                 findings.extend(run);
                 findings.sort_by_key(|item| (item.line, item.diagnostic.span.start()));
