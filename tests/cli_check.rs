@@ -514,3 +514,24 @@ fn the_control_s_file_names_say_whether_a_program_is_a_main_program() {
         ]
     );
 }
+
+#[test]
+fn macros_of_definition_files_are_no_unknown_g_functions() {
+    let dir = TestDir::new("library-macros");
+    let program = dir.write(
+        "parts/MAIN.MPF",
+        b"N10 G90 G0 X0 Y0 Z0\nN20 R210=25\nN30 G300\nN40 M30\n",
+    );
+    let without = check(&[&program]);
+    assert_eq!(
+        without.exit_code, 1,
+        "G300 is no G function: {}",
+        without.stdout
+    );
+    assert!(without.stdout.contains("S144"), "{}", without.stdout);
+    // A macro definition file next to the program defines G300 (reference §8.10).
+    dir.write("parts/_N_SMAC_DEF", b"DEFINE G300 AS G90 G0 Z=R210\n");
+    let with = check(&[&program]);
+    assert_eq!(with.exit_code, 0, "{}", with.stdout);
+    assert!(!with.stdout.contains("S144"), "{}", with.stdout);
+}

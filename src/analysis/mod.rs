@@ -108,6 +108,22 @@ pub fn diagnose_program(
     })
 }
 
+/// Like [`diagnose_program`], with the macros of the library's definition files (`macros`): a block
+/// that uses one is expanded instead of read as an unknown G function or call.
+pub fn diagnose_program_with_macros(
+    text: &str,
+    config: &MachineConfig,
+    kind: ProgramKind,
+    macros: &crate::analysis::execution::library_macros::LibraryMacros,
+) -> Vec<LineDiagnostic> {
+    let mut engine = new_engine(text, config, kind);
+    engine.define_library_macros(&macros.definitions);
+    let names: Vec<&str> = macros.names().collect();
+    crate::syntax::visit_blocks_with_macros(text, config, &names, |_, line, block, findings| {
+        engine.step(line, block, findings);
+    })
+}
+
 /// Hands every move of a program to `visit`, in program order, and returns the diagnostics. The moves
 /// are built one at a time and not kept, so a program of any length needs memory for one move only.
 pub fn visit_moves(

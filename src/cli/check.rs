@@ -75,7 +75,16 @@ pub(crate) fn run_check(
         // The checker returns the diagnostics sorted by line and column, the order people read in:
         // those of reading the program block by block, and those of running it.
         let kind = crate::analysis::ProgramKind::from_file_name(&path.to_string_lossy());
-        let mut line_diagnostics = crate::analysis::diagnose_program(&source.text, &config, kind);
+        // Macros of the library's definition files read as the run reads them.
+        let macros = crate::analysis::execution::library_macros::LibraryMacros::read(
+            library.as_ref(),
+            &config,
+        );
+        let mut line_diagnostics = if macros.definitions.is_empty() {
+            crate::analysis::diagnose_program(&source.text, &config, kind)
+        } else {
+            crate::analysis::diagnose_program_with_macros(&source.text, &config, kind, &macros)
+        };
         let run_findings = crate::analysis::execution::execution_findings(
             &source.text,
             &config,

@@ -30,10 +30,21 @@ pub fn check_program(text: &str, config: &MachineConfig) -> Vec<LineDiagnostic> 
 pub fn visit_blocks(
     text: &str,
     config: &MachineConfig,
+    visit: impl FnMut(usize, &str, &Block, &mut Vec<crate::diagnostics::Diagnostic>),
+) -> Vec<LineDiagnostic> {
+    visit_blocks_with_macros(text, config, &[], visit)
+}
+
+/// Like [`visit_blocks`], with the macros of definition files (`library_macros`) known besides the
+/// program's own.
+pub fn visit_blocks_with_macros(
+    text: &str,
+    config: &MachineConfig,
+    library_macros: &[&str],
     mut visit: impl FnMut(usize, &str, &Block, &mut Vec<crate::diagnostics::Diagnostic>),
 ) -> Vec<LineDiagnostic> {
     let mut context = SyntaxContext::new(config);
-    for name in macro_names(text) {
+    for name in library_macros.iter().copied().chain(macro_names(text)) {
         context.add_macro(name);
     }
     let mut parser = LineParser::new();
