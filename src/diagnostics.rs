@@ -260,6 +260,7 @@ codes! {
     SubprogramLevelExceeded = "E405", Error, "A call that would need more than the control's program levels (16: the main program and 15 nested calls), or a recursion that does not end (alarm 14012).";
     JumpTargetNotFound = "E406", Error, "A jump whose target, computed while the program runs (a STRING variable), names no label of the program (alarm 14080).";
     RestartByPlc = "E407", Information, "GOTOS restarts the program only when the PLC requests it; the analysis follows the configured request.";
+    LevelLimitOnUndecidedWay = "E409", Warning, "A call that would need more than the control's program levels, on a way that depends on conditions the program does not determine: the control stops with alarm 14012 if it takes that way.";
     FlowNotFollowed = "E408", Information, "A jump whose target is not known statically, or a control structure whose nesting is broken: from there on the program is read in program order and its values are uncertain.";
     UnknownSubprogram = "W301", Warning, "A call of a subprogram that no file of the workspace defines and that is not a cycle of the control (reported only when the workspace index is complete, and not for a word S120 already reports as read as a call).";
     TooManyArguments = "W302", Warning, "A call that passes more arguments than the PROC header of the called subprogram declares.";

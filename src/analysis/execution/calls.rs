@@ -159,14 +159,23 @@ impl<'a, 's> Interpreter<'a, 's> {
     ) -> Next {
         if control.levels.len() >= self.options.max_levels {
             let name = self.units[call.unit].name.clone();
+            // On a way the program may not take, the alarm is a possibility, not a certainty.
+            let undecided = control.open_decisions(&self.covered).next().is_some();
+            let (code, way) = match undecided {
+                true => (
+                    Code::LevelLimitOnUndecidedWay,
+                    "on a way that depends on conditions the program does not determine, ",
+                ),
+                false => (Code::SubprogramLevelExceeded, ""),
+            };
             self.report(
                 control,
                 call.line,
-                Code::SubprogramLevelExceeded,
+                code,
                 call.span,
                 format!(
-                    "calling {name} here needs program level {}, beyond the control's {} levels (alarm 14012): the program stops",
-                    control.levels.len(),
+                    "{way}calling {name} here needs program level {}, beyond the control's {} levels (alarm 14012): the program stops there",
+                    control.levels.len() + 1,
                     self.options.max_levels
                 ),
             );
