@@ -124,6 +124,19 @@ impl Analysed {
         self.execution_job().run(library)
     }
 
+    /// Whether a feature at `line` may show the run rather than the reading in program order: the
+    /// block there follows a label, a jump or a loop, or the document is a subprogram.
+    pub fn may_show_run(&self, line: usize) -> bool {
+        if self.analysis.kind() == crate::analysis::ProgramKind::Subprogram {
+            return true;
+        }
+        if line >= self.rope.len_lines() {
+            return false;
+        }
+        let report = self.analysis.block_report(&self.lines(), line);
+        report.before.flow_uncertain || report.after.flow_uncertain
+    }
+
     /// What running this revision needs, to run it after letting go of the analysis.
     pub fn execution_job(&self) -> ExecutionJob {
         ExecutionJob {

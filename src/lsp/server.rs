@@ -166,7 +166,8 @@ impl Backend {
         let line = params.line as usize;
         let library =
             crate::lsp::library::workspace_library(&self.shared, file_path(&params.uri).as_deref());
-        self.on_analysis(&params.uri, move |analysed| {
+        let warm = Arc::clone(&library);
+        self.on_analysis_after_run(&params.uri, warm, line, move |analysed| {
             crate::lsp::modal_state::modal_state_at(analysed, library.as_ref(), line)
         })
         .await
@@ -343,6 +344,37 @@ impl Shared {
                 let _ = client.inlay_hint_refresh().await;
             });
         }
+    }
+
+    /// Like [`Self::on_analysis`] for a request that shows the run of the program at `line`: when
+    /// the block there is not read in program order (after a label, a jump or a loop, or in a
+    /// subprogram), the run of the revision is made first without holding the analysis, so that
+    /// edits meanwhile are analysed and published; the job then finds it made.
+    pub(super) async fn on_analysis_after_run<T: Send + 'static>(
+        &self,
+        uri: &Uri,
+        library: Arc<dyn crate::analysis::library::ProgramLibrary>,
+        line: usize,
+        job: impl FnOnce(&Analysed) -> T + Send + 'static,
+    ) -> Result<T> {
+        if let Some(document) = self.documents.get(uri) {
+            let revision = document.revision();
+            let _ = tokio::task::spawn_blocking(move || {
+                let run = {
+                    let slot = document.catch_up();
+                    slot.as_ref()
+                        .filter(|analysed| {
+                            analysed.revision == revision && analysed.may_show_run(line)
+                        })
+                        .map(|analysed| analysed.execution_job())
+                };
+                if let Some(run) = run {
+                    run.run(library.as_ref());
+                }
+            })
+            .await;
+        }
+        self.on_analysis(uri, job).await
     }
 
     /// The open document, the revision it had when the request came, and a job that answers the
@@ -667,7 +699,9 @@ impl LanguageServer for Backend {
         let shared = Arc::clone(&self.shared);
         let document_uri = uri.clone();
         let library = crate::lsp::library::workspace_library(&shared, file_path(&uri).as_deref());
-        self.on_analysis(&uri, move |analysed| {
+        let warm = Arc::clone(&library);
+        let line = position.line as usize;
+        self.on_analysis_after_run(&uri, warm, line, move |analysed| {
             hover(
                 analysed,
                 library.as_ref(),
