@@ -119,18 +119,26 @@ fn check_random_edits(
                 "executed blocks",
                 mine.executed_blocks == theirs.executed_blocks,
             ),
-            ("pass counts", mine.pass_totals == theirs.pass_totals),
+            (
+                "pass counts",
+                again.passes_by_program() == fresh.passes_by_program(),
+            ),
             ("first passes", mine.first_passes == theirs.first_passes),
             ("assumptions", mine.assumed == theirs.assumed),
         ];
+        // A short program is shown with the failure, to make it a case of its own.
+        let shown = if edited.len() < 4000 {
+            edited.as_str()
+        } else {
+            ""
+        };
         for (part, same) in parts {
             assert!(
                 same,
-                "{name}, edit {step}: the {part} of the run from the earlier run differ from a fresh run's ({:?})",
+                "{name}, edit {step}: the {part} of the run from the earlier run differ from a fresh run's ({:?})\n{shown}",
                 again.start
             );
         }
-        assert!(mine == theirs, "{name}, edit {step}: the runs differ");
         if *again.moves != *fresh.moves {
             let first = again
                 .moves
@@ -402,5 +410,6 @@ fn a_block_that_runs_more_often_keeps_the_later_pass_numbers_right() {
         .collect();
     assert_eq!(passes, vec![1, 2, 3, 4, 5, 6]);
     assert_eq!(*again.moves, *fresh.moves);
-    assert_eq!(again.execution, fresh.execution);
+    assert_eq!(again.execution.findings, fresh.execution.findings);
+    assert_eq!(again.passes_by_program(), fresh.passes_by_program());
 }

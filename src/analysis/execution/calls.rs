@@ -350,10 +350,26 @@ impl<'a, 's> Interpreter<'a, 's> {
 /// The upper-case name a call statement names: a name, `L123`, or the string of `CALL "NAME"`.
 fn callee_name(line: &str, name: Span, kind: CallKind) -> Option<String> {
     let text = line.get(name.start()..name.end())?.trim();
-    let text = if kind == CallKind::Indirect {
-        text.strip_prefix('"')?.strip_suffix('"')?
-    } else {
-        text
+    let text = match kind {
+        // `CALL "NAME"`, and `PCALL /_N_CMA_DIR/_N_NAME_SPF` (a path, without quotes): the program
+        // is the last part of the path, named the control's way or plainly.
+        CallKind::Indirect => {
+            let text = match text.strip_prefix('"') {
+                Some(quoted) => quoted.strip_suffix('"')?,
+                None => text,
+            };
+            let file = text.rsplit('/').next().unwrap_or(text);
+            let upper = file.to_ascii_uppercase();
+            let inner = upper.strip_prefix("_N_").and_then(|rest| {
+                rest.strip_suffix("_SPF")
+                    .or_else(|| rest.strip_suffix("_MPF"))
+            });
+            return inner
+                .map(str::to_string)
+                .or((!upper.is_empty()).then_some(upper))
+                .filter(|name| !name.is_empty());
+        }
+        _ => text,
     };
     (!text.is_empty()).then(|| text.to_ascii_uppercase())
 }

@@ -356,6 +356,20 @@ fn same_programs(earlier: &[Arc<LibraryProgram>], now: &[Arc<LibraryProgram>]) -
 }
 
 impl RecordedRun {
+    /// How often each line of each program ran, by the program's path (`None`: the analysed
+    /// program), without the programs that did not run. A resumed run keeps the table of programs
+    /// of the run it resumed, in that run's order, also programs the new text no longer calls: this
+    /// is the table's meaning, the same for a resumed and a fresh run.
+    pub fn passes_by_program(&self) -> std::collections::BTreeMap<Option<String>, Vec<u32>> {
+        self.units
+            .iter()
+            .zip(&self.execution.pass_totals)
+            .enumerate()
+            .filter(|(index, (_, counts))| *index == 0 || counts.iter().any(|&count| count > 0))
+            .map(|(_, (unit, counts))| (unit.path.as_deref().map(str::to_string), counts.clone()))
+            .collect()
+    }
+
     /// Whether `library` gives every program this run looked up as it was then.
     fn same_library(&self, library: &dyn ProgramLibrary) -> bool {
         self.unit_names.iter().all(|(name, found)| {
