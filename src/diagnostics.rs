@@ -218,7 +218,7 @@ codes! {
     InvalidLabel = "S161", Error, "A label name the control cannot accept (starts with a digit, or is an address letter).";
     LabelStyle = "S162", Warning, "A label or name that breaks the naming recommendations (fewer than two leading letters, longer than 31 characters).";
     BlockTooLong = "S163", Warning, "A block longer than the configured maximum (512 characters including the comment).";
-    TooDeeplyNested = "S170", Error, "An expression nested deeper than the parser accepts.";
+    TooDeeplyNested = "S170", Error, "An expression nested deeper, or chaining more operations, than the parser accepts.";
     UnknownFunction = "S171", Warning, "A call of a function the language does not define.";
     ComparisonPrecedence = "S172", Warning, "A comparison whose operand is an unbracketed AND/OR expression; comparisons bind weakest.";
     UnknownNameBetweenOperands = "S173", Warning, "A name standing between two operands, most likely a macro (DEFINE) whose definition is not known.";

@@ -21,6 +21,12 @@ mod repeats;
 /// far below; deeper input is reported (S170) and skipped in linear time.
 pub const MAX_EXPRESSION_DEPTH: u32 = 128;
 
+/// How high the tree of one expression may grow (a leaf is 1, `a+b` is 2). Chains such as
+/// `1+1+1+...` are parsed in a loop and grow the tree without deepening the parser's recursion, so
+/// this bound is what keeps every recursive walk of the tree (evaluation, formatting, checks) within a
+/// small, fixed stack, whatever the length of the line.
+pub const MAX_TREE_HEIGHT: u32 = 256;
+
 /// Most findings reported for one line; the last one says that more were dropped.
 pub const MAX_DIAGNOSTICS_PER_LINE: usize = 200;
 
@@ -68,6 +74,8 @@ const MAX_MESSAGE_CHARACTERS: usize = 300;
 #[derive(Default)]
 pub struct LineParser {
     lexemes: Vec<Lexeme>,
+    /// The height of each expression node of the block being parsed (see [`MAX_TREE_HEIGHT`]).
+    heights: Vec<u32>,
 }
 
 impl LineParser {
@@ -111,7 +119,7 @@ impl LineParser {
         block.clear();
         diagnostics.clear();
         if allow_fast_path {
-            let mut parser = Parser::new(line, &[], block, diagnostics, context);
+            let mut parser = Parser::new(line, &[], block, diagnostics, context, &mut self.heights);
             if parser.parse_plain_block() {
                 return;
             }
@@ -119,7 +127,15 @@ impl LineParser {
             diagnostics.clear();
         }
         lex_line_into(line, &mut self.lexemes);
-        Parser::new(line, &self.lexemes, block, diagnostics, context).parse_block();
+        Parser::new(
+            line,
+            &self.lexemes,
+            block,
+            diagnostics,
+            context,
+            &mut self.heights,
+        )
+        .parse_block();
     }
 }
 
@@ -152,6 +168,8 @@ struct Parser<'a> {
     repeats: Vec<repeats::RepeatWords>,
     /// Whether a CASE branch was pushed: the block checks then leave such statements out.
     has_case_branches: bool,
+    /// The height of every node in `block.exprs` (a leaf is 1), kept beside the arena.
+    heights: &'a mut Vec<u32>,
 }
 
 /// Letters that name axes when the machine configuration has such an axis (reference §1.7).
@@ -169,7 +187,9 @@ impl<'a> Parser<'a> {
         block: &'a mut Block,
         diagnostics: &'a mut Vec<Diagnostic>,
         context: &'a SyntaxContext,
+        heights: &'a mut Vec<u32>,
     ) -> Parser<'a> {
+        heights.clear();
         Parser {
             line,
             lexemes,
@@ -186,6 +206,7 @@ impl<'a> Parser<'a> {
             group_depth: 0,
             repeats: Vec::new(),
             has_case_branches: false,
+            heights,
         }
     }
 
@@ -305,8 +326,56 @@ impl<'a> Parser<'a> {
     }
 
     fn push_expr(&mut self, kind: ExprKind, span: Span) -> ExprId {
+        let height = self.height_of(&kind);
+        let kind = if height > MAX_TREE_HEIGHT {
+            self.report_too_long(span);
+            ExprKind::Error
+        } else {
+            kind
+        };
+        let height = if matches!(kind, ExprKind::Error) {
+            1
+        } else {
+            height
+        };
         self.block.exprs.push(Expr { kind, span });
+        self.heights.push(height);
         ExprId(self.block.exprs.len() as u32 - 1)
+    }
+
+    /// The height of a node of `kind`: one more than its highest child. A chain of operators
+    /// (`1+1+1+...`) is built by a loop, not by recursion, so only this height bounds the depth of the
+    /// tree that evaluation and other walks recurse over.
+    fn height_of(&self, kind: &ExprKind) -> u32 {
+        let child = |id: &ExprId| self.heights.get(id.0 as usize).copied().unwrap_or(1);
+        let highest = match kind {
+            ExprKind::RParameterIndexed(inner)
+            | ExprKind::Unary(_, inner)
+            | ExprKind::Parenthesized(inner) => child(inner),
+            ExprKind::Binary(_, left, right) => child(left).max(child(right)),
+            ExprKind::Name { indexes } | ExprKind::SystemVariable { indexes } => {
+                indexes.iter().map(child).max().unwrap_or(0)
+            }
+            ExprKind::Call { args, .. } => args.iter().flatten().map(child).max().unwrap_or(0),
+            ExprKind::List(items) => items.iter().map(child).max().unwrap_or(0),
+            _ => 0,
+        };
+        highest.saturating_add(1)
+    }
+
+    /// Reports, once per block, an expression with more than [`MAX_TREE_HEIGHT`] operations nested
+    /// in each other; the node becomes an error node, so its value is unknown.
+    fn report_too_long(&mut self, span: Span) {
+        // One S170 per block, whether the parser's nesting or the tree's height was exceeded first.
+        if self.depth_reported {
+            return;
+        }
+        self.depth_reported = true;
+        self.report(
+            Code::TooDeeplyNested,
+            span,
+            format!("this expression chains more than {MAX_TREE_HEIGHT} operations; its value is not evaluated"),
+        );
     }
 
     fn expr_span(&self, id: ExprId) -> Span {
