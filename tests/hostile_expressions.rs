@@ -4,7 +4,6 @@
 //! formatting) within a fixed stack. Each input must give a finding, through `check`, `preview`, `fmt`
 //! and the language server, and never abort.
 
-#[allow(dead_code)]
 #[path = "support/lsp_client.rs"]
 mod lsp_client;
 
