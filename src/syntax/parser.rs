@@ -1227,7 +1227,9 @@ impl<'a> Parser<'a> {
     /// an R parameter or a plain variable name count; another address letter is the next word.
     fn value_without_equals_here(&self, signed: bool) -> bool {
         match self.peek() {
-            Some(Token::LeftParen) => signed || self.adjacent(self.position),
+            Some(Token::LeftParen) => {
+                signed || self.adjacent(self.position) || self.brackets_hold_a_value()
+            }
             Some(Token::Letter) => {
                 signed
                     && self.letter_at(self.position) == Some(b'R')
@@ -1235,16 +1237,51 @@ impl<'a> Parser<'a> {
             }
             Some(Token::SystemVariable) => signed,
             Some(Token::Identifier) => {
-                if !signed {
-                    return false;
-                }
                 let upper = self.upper_name(self.current_span());
-                keywords::statement_keyword(&upper).is_none()
+                let plain_name = keywords::statement_keyword(&upper).is_none()
                     && GCode::from_name(&upper).is_none()
-                    && !keywords::is_modifier_name(&upper)
+                    && !keywords::is_modifier_name(&upper);
+                // `TRANS X _CPA`, `X SIN(30)`: after an address that has no value, a user's name or
+                // a function (not an instruction or address of the control) is the value with its
+                // `=` left out, not a word of its own.
+                plain_name
+                    && (signed
+                        || (keywords::named_address(&upper).is_none()
+                            && (keywords::is_function(&upper)
+                                || !keywords::is_instruction(&upper))
+                            && !self.context.is_macro(&upper)))
             }
             _ => false,
         }
+    }
+
+    /// Whether the brackets at the current position (`Z (R1+2)`, apart from the address) hold a value
+    /// rather than words: a number, an operator, an R parameter or a system variable inside. Siemens
+    /// has no bracket comments, so such brackets after an address without value are its value with
+    /// the `=` left out; a bracketed word alone (`X (MOVE)`) stays a misplaced comment.
+    fn brackets_hold_a_value(&self) -> bool {
+        // A value is short; looking further would make a long line of brackets quadratic.
+        const LOOK_AHEAD: usize = 64;
+        let mut depth = 0usize;
+        for index in self.position..self.lexemes.len().min(self.position + LOOK_AHEAD) {
+            match self.token_at(index) {
+                Some(Token::LeftParen) => depth += 1,
+                Some(Token::RightParen) => {
+                    depth = depth.saturating_sub(1);
+                    if depth == 0 {
+                        return false;
+                    }
+                }
+                Some(Token::Number)
+                | Some(Token::SystemVariable)
+                | Some(Token::Plus)
+                | Some(Token::Minus)
+                | Some(Token::Star)
+                | Some(Token::Slash) => return true,
+                _ => {}
+            }
+        }
+        false
     }
 
     /// After `=`: a modifier such as `AC(..)` (with the checks of reference §1.8) or an expression.
@@ -1352,14 +1389,13 @@ impl<'a> Parser<'a> {
         let modifier_text = self.text(modifier_span).to_string();
         self.advance();
         let start = self.position;
-        if matches!(self.peek(), Some(Token::Minus) | Some(Token::Plus))
-            && self.peek_nth(1) == Some(Token::Number)
-        {
-            self.advance();
-        }
-        if self.is_at(Token::Number) {
-            let number_span = self.advance();
-            let value_span = self.span_at(start).to(number_span);
+        let signed_number = matches!(self.peek(), Some(Token::Minus) | Some(Token::Plus))
+            && self.peek_nth(1) == Some(Token::Number);
+        if signed_number || self.is_at(Token::Number) {
+            // The whole expression that follows is the value (`AC 1.2+SIN(30)`): the fix brackets
+            // all of it, so that it keeps its meaning.
+            let value = self.parse_expression();
+            let value_span = self.span_at(start).to(self.expr_span(value));
             let value_text = self.text(value_span).to_string();
             let span = modifier_span.to(value_span);
             let replacement = format!("{modifier_text}({value_text})");
