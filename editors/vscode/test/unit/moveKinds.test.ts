@@ -17,21 +17,35 @@ import { move, readFixture } from './fixtures';
 
 const fixtureMoves = () => parsePreview(readFixture('contours_drill.preview.json')).moves;
 const contours = () => packMoves(fixtureMoves());
-/** The moves of the fixture: 3 the rounding, 6 the chamfer by CHF, 8 the one by CHR, 12..27 the
- * four holes of HOLES1 (positioning G0, G0 to the safety plane, G1 to the depth, G0 to RTP). */
-const DRILLS = [14, 18, 22, 26];
+// The fixture's moves are found by what the server says of them, not by their place, so that the tests
+// hold when the fixture is written again by the server (which may position or order differently):
+// the rounding, the two chamfers, the moves of the pattern on line 15 (positioning by HOLES1, G0 to
+// the safety plane, G1 to the depth and G0 to RTP by CYCLE81) and the drilling moves among them.
+const FIXTURE = fixtureMoves();
+const where = (test: (m: PreviewMove) => boolean) => FIXTURE.flatMap((m, i) => (test(m) ? [i] : []));
+const [RND] = where((m) => m.inserted === 'RND');
+const [CHF] = where((m) => m.inserted === 'CHF');
+const [CHR] = where((m) => m.inserted === 'CHR');
+const PATTERN = where((m) => m.line === 15);
+const DRILLS = where((m) => m.cycle === 'CYCLE81' && m.motion === 'G1');
+const [POSITIONING] = where((m) => m.cycle === 'HOLES1');
+const [RAPID_DOWN] = where((m) => m.cycle === 'CYCLE81' && m.motion === 'G0');
+/** The holes of T125's N30, HOLES1(20, 10, 0, 10, 15, 4), as a set: the order is not the reference's. */
 const HOLES = [[30, 10], [45, 10], [60, 10], [75, 10]];
+const asSet = (points: number[][]) => points.map(([x, y]) => `${x} ${y}`).sort();
 
 test('the preview names inserted elements, cycles and times, and refuses malformed ones', () => {
   const moves = fixtureMoves();
   assert.deepEqual(moves.map((m) => m.inserted).filter(Boolean), ['RND', 'CHF', 'CHR']);
-  assert.equal(moves[3].inserted, 'RND');
-  assert.equal(moves[3].arc?.radius, 5);
-  assert.equal(moves[12].cycle, 'HOLES1');
-  assert.equal(moves[14].cycle, 'CYCLE81');
-  assert.equal(moves[2].cycle, null);
+  assert.equal(moves[RND].arc?.radius, 5);
+  assert.equal(moves[RND].line, 7, 'the line of the block that programs it');
+  assert.equal(DRILLS.length, 4);
+  assert.deepEqual(asSet(DRILLS.map((i) => [moves[i].end.X, moves[i].end.Y])), asSet(HOLES));
+  assert.ok(DRILLS.every((i) => moves[i].line === 15), 'the line of the HOLES1 call');
+  assert.equal(moves[POSITIONING].line, 15);
+  assert.equal(moves[0].cycle, null);
   assert.equal(moves[0].time, null, 'a move without a known start has no time');
-  assert.equal(moves[14].time, 3.6);
+  assert.equal(moves[DRILLS[0]].time, 3.6, '6 mm at F100');
   const answer = (extra: Record<string, unknown>) => ({ moves: [{ line: 1, motion: 'G1', end: { X: 1 }, ...extra }] });
   assert.equal(parsePreview(answer({ inserted: 'rnd', cycle: 'cycle82' })).moves[0].inserted, 'RND');
   assert.equal(parsePreview(answer({ cycle: 'cycle82' })).moves[0].cycle, 'CYCLE82');
@@ -43,23 +57,25 @@ test('the preview names inserted elements, cycles and times, and refuses malform
 
 test('inserted elements, cycle moves and holes are flag bits; cycle names a small table', () => {
   const packed = contours();
-  assert.equal(packed.count, 28);
-  assert.equal(packed.flags[3] & FLAG_INSERTED_MASK, FLAG_INSERTED_RND);
-  assert.equal(packed.flags[6] & FLAG_INSERTED_MASK, FLAG_INSERTED_CHF);
-  assert.equal(packed.flags[8] & FLAG_INSERTED_MASK, FLAG_INSERTED_CHR);
-  assert.deepEqual([3, 6, 8].map((i) => insertedName(packed.flags[i])), ['RND', 'CHF', 'CHR']);
-  assert.equal(insertedName(packed.flags[2]), '', 'the shortened block itself is programmed');
-  assert.ok(packed.arcOf[3] >= 0 && packed.arcOf[6] < 0, 'the rounding keeps its arc, the chamfer is straight');
-  assert.deepEqual(packed.cycleNames, ['', 'HOLES1', 'CYCLE81']);
-  assert.deepEqual([...packed.cycleOf.slice(10, 17)], [0, 0, 1, 2, 2, 2, 1]);
-  const cycleMoves = [...packed.flags].map((flags, i) => (flags & FLAG_CYCLE ? i : -1)).filter((i) => i >= 0);
-  assert.deepEqual(cycleMoves, Array.from({ length: 16 }, (_, i) => 12 + i));
-  const holes = [...packed.flags].map((flags, i) => (flags & FLAG_HOLE_MASK ? i : -1)).filter((i) => i >= 0);
+  assert.equal(packed.count, FIXTURE.length);
+  assert.equal(packed.flags[RND] & FLAG_INSERTED_MASK, FLAG_INSERTED_RND);
+  assert.equal(packed.flags[CHF] & FLAG_INSERTED_MASK, FLAG_INSERTED_CHF);
+  assert.equal(packed.flags[CHR] & FLAG_INSERTED_MASK, FLAG_INSERTED_CHR);
+  assert.deepEqual([RND, CHF, CHR].map((i) => insertedName(packed.flags[i])), ['RND', 'CHF', 'CHR']);
+  assert.equal(insertedName(packed.flags[RND - 1]), '', 'the shortened block itself is programmed');
+  assert.ok(packed.arcOf[RND] >= 0 && packed.arcOf[CHF] < 0, 'the rounding keeps its arc, the chamfer is straight');
+  assert.deepEqual([...packed.cycleNames].sort(), ['', 'CYCLE81', 'HOLES1']);
+  const nameOf = (i: number) => packed.cycleNames[packed.cycleOf[i]];
+  assert.deepEqual(FIXTURE.map((_, i) => nameOf(i)), FIXTURE.map((m) => m.cycle ?? ''));
+  const cycleMoves = [...packed.flags].flatMap((flags, i) => (flags & FLAG_CYCLE ? [i] : []));
+  assert.deepEqual(cycleMoves, PATTERN, 'every move of the pattern, and no other');
+  const holes = [...packed.flags].flatMap((flags, i) => (flags & FLAG_HOLE_MASK ? [i] : []));
   assert.deepEqual(holes, DRILLS, 'the feed moves of CYCLE81, not its rapids nor the positioning');
   assert.ok(DRILLS.every((i) => holeAxis(packed.flags[i]) === 2), 'along Z');
-  assert.equal(holeAxis(packed.flags[12]), -1);
+  assert.equal(holeAxis(packed.flags[POSITIONING]), -1);
+  assert.equal(holeAxis(packed.flags[RAPID_DOWN]), -1);
   assert.ok(Number.isNaN(packed.time[0]));
-  assert.equal(packed.time[14], 3.6);
+  assert.equal(packed.time[DRILLS[0]], 3.6);
 });
 
 test('a hole is a drilling cycle\'s straight feed move along one axis alone', () => {
@@ -83,22 +99,24 @@ test('a hole is a drilling cycle\'s straight feed move along one axis alone', ()
 test('joined and revived parts keep cycle names, holes and times', () => {
   const moves = fixtureMoves();
   const whole = packMoves(moves);
-  // The second part meets CYCLE81 before HOLES1: its table is in another order.
-  const parts = [packMoves(moves.slice(0, 13)), packMoves(moves.slice(13)), packMoves([move(30, 'G1', {}, { X: 1 }, { cycle: 'CYCLE86' })])];
-  assert.deepEqual(parts[1].cycleNames, ['', 'CYCLE81', 'HOLES1']);
+  const n = moves.length;
+  // A part with CYCLE86 first, then one with the pattern: the second part's table is in another order.
+  const parts = [packMoves([move(30, 'G1', {}, { X: 1 }, { cycle: 'CYCLE86' })]), packMoves(moves.slice(0, RAPID_DOWN + 1)), packMoves(moves.slice(RAPID_DOWN + 1))];
+  assert.deepEqual(parts[0].cycleNames, ['', 'CYCLE86']);
   const joined = concatPacked(parts);
-  assert.deepEqual(joined.cycleNames, ['', 'HOLES1', 'CYCLE81', 'CYCLE86']);
+  assert.deepEqual([...joined.cycleNames].sort(), ['', 'CYCLE81', 'CYCLE86', 'HOLES1']);
   const names = (p: typeof joined) => [...p.cycleOf].map((index) => p.cycleNames[index]);
-  assert.deepEqual(names(joined).slice(0, 28), names(whole));
-  assert.equal(names(joined)[28], 'CYCLE86');
-  assert.deepEqual([...joined.flags.slice(0, 28)], [...whole.flags]);
-  assert.deepEqual([...joined.time.slice(0, 28)], [...whole.time]);
+  assert.equal(names(joined)[0], 'CYCLE86');
+  assert.deepEqual(names(joined).slice(1), names(whole));
+  assert.deepEqual([...joined.flags.slice(1)], [...whole.flags]);
+  assert.deepEqual([...joined.time.slice(1)], [...whole.time]);
+  assert.equal(joined.count, n + 1);
   const revived = revivePacked(JSON.parse(JSON.stringify(joined)));
   assert.deepEqual(revived.cycleNames, joined.cycleNames);
   assert.ok(revived.cycleOf instanceof Uint8Array && revived.time instanceof Float64Array);
   assert.deepEqual(names(revived), names(joined));
-  assert.ok(Number.isNaN(revived.time[0]), 'an unknown time stays unknown, not 0');
-  assert.equal(revived.time[14], 3.6);
+  assert.ok(Number.isNaN(revived.time[1]), 'an unknown time stays unknown, not 0');
+  assert.equal(revived.time[DRILLS[0] + 1], 3.6);
 });
 
 test('a toolpath with more cycle names than the table holds keeps their flag without a name', () => {
@@ -115,16 +133,16 @@ test('holes show in the plane across the tool axis only, one per hole', () => {
   const packed = contours();
   const top = project(packed, 'G17');
   assert.deepEqual([...top.holeSegment].map((s) => top.moveIndex[s]), DRILLS);
-  assert.deepEqual([...top.holeSegment].map((s) => [top.x0[s], top.y0[s]]), HOLES);
+  assert.deepEqual(asSet([...top.holeSegment].map((s) => [top.x0[s], top.y0[s]])), asSet(HOLES));
   assert.ok([...top.holeSegment].every((s) => top.kind[s] & KIND_HOLE));
   assert.equal(top.holeSegment.length, [...top.kind].filter((k) => k & KIND_HOLE).length);
   for (const plane of ['G18', 'G19'] as const) {
     const side = project(packed, plane);
     assert.equal(side.holeSegment.length, 0, `${plane} shows the drilling as lines along Z`);
-    const drill = [...side.moveIndex].indexOf(14);
+    const drill = [...side.moveIndex].indexOf(DRILLS[0]);
     assert.ok(drill >= 0 && (side.x0[drill] !== side.x1[drill] || side.y0[drill] !== side.y1[drill]), `${plane}: the drilling move is a line`);
   }
-  assert.deepEqual([...top.moveIndex].filter((m) => top.kind[[...top.moveIndex].indexOf(m)] & KIND_INSERTED), [3, 6, 8]);
+  assert.deepEqual([...top.moveIndex].filter((_, s) => top.kind[s] & KIND_INSERTED), [RND, CHF, CHR]);
   // Pecks of one hole (CYCLE83: G1, G0 up, G0 down, G1) are one ring; the same place drilled by
   // another line is a ring of its own, so that each line can be clicked.
   const peck = (line: number, from: number, to: number) => move(line, 'G1', { X: 5, Y: 5, Z: from }, { X: 5, Y: 5, Z: to }, { cycle: 'CYCLE83' });
@@ -141,20 +159,21 @@ test('a click on or near a hole\'s ring picks the hole, not the rapids that end 
   const view = fitView(p.bounds, 800, 600);
   const [hx, hy] = toScreen(view, 45, 10);
   const hole = pickHole(p, view, hx + HOLE_RADIUS_PX + 2, hy);
-  assert.equal(p.moveIndex[hole], 18, 'the drilling move of the second hole');
+  const drill = p.moveIndex[hole];
+  assert.ok(DRILLS.includes(drill) && packed.end[drill * 3] === 45, 'the drilling move of the hole at X45');
   assert.equal(p.line[hole], 15, 'whose line is the HOLES1 call');
   assert.equal(pickHole(p, view, hx + HOLE_RADIUS_PX + 4, hy), -1, 'outside the ring');
   assert.notEqual(pick(p, view, hx, hy), hole, 'the segments alone pick a rapid that ends at the hole');
   assert.equal(pickMove(p, view, hx, hy - 1), hole);
   const [lx, ly] = toScreen(view, 50, 30); // on N60 Y50, away from every hole
-  assert.equal(p.moveIndex[pickMove(p, view, lx, ly)], 4);
+  assert.equal(p.line[pickMove(p, view, lx, ly)], 8);
   // The rounding is picked on its arc, and is the line of the block that programs it.
   const [ax, ay] = toScreen(view, 45 + 5 * Math.cos(-Math.PI / 4), 5 + 5 * Math.sin(-Math.PI / 4));
   const arc = pickMove(p, view, ax, ay);
-  assert.equal(p.moveIndex[arc], 3);
+  assert.equal(p.moveIndex[arc], RND);
   assert.equal(p.line[arc], 7);
   // The cursor on the HOLES1 line highlights every move of the pattern and its drilling.
-  assert.equal(segmentsCausedBy(p, packed, 0, 15).length, 16);
+  assert.deepEqual([...segmentsCausedBy(p, packed, 0, 15)].map((s) => p.moveIndex[s]), PATTERN);
 });
 
 interface Stroke { colour: unknown; width: number; ellipses: number[][] }
@@ -184,7 +203,7 @@ test('holes are drawn as rings, the inserted rounding as a wider arc in the feed
   const rings = strokes.filter((s) => s.ellipses.some((e) => e[2] === HOLE_RADIUS_PX));
   assert.equal(rings.length, 1, 'one path of rings');
   assert.equal(rings[0].colour, STYLES.feed.colour);
-  assert.deepEqual(rings[0].ellipses.map((e) => [e[0], e[1]]), HOLES.map(([x, y]) => toScreen(view, x, y)));
+  assert.deepEqual(asSet(rings[0].ellipses.map((e) => [e[0], e[1]])), asSet(HOLES.map(([x, y]) => toScreen(view, x, y))));
   const inserted = strokes.find((s) => s.width === STYLES.inserted.width)!;
   assert.equal(inserted.colour, STYLES.feed.colour, 'the colour of the path');
   assert.deepEqual(inserted.ellipses.map((e) => e[2]), [5 * view.scale], 'the rounding is its arc');
@@ -203,15 +222,15 @@ test('the cursor on a pattern\'s line rings its holes in the highlight colour', 
 
 test('the description says what made a move and how long it takes', () => {
   const packed = contours();
-  assert.equal(madeBy(packed, 3), 'rounding R5 inserted by RND');
-  assert.equal(madeBy(packed, 6), 'chamfer 5 long inserted by CHF');
-  assert.equal(madeBy(packed, 8), 'chamfer 7.0711 long inserted by CHR');
-  assert.equal(madeBy(packed, 12), 'made by HOLES1');
-  assert.equal(madeBy(packed, 13), 'made by CYCLE81');
-  assert.equal(madeBy(packed, 14), 'hole drilled by CYCLE81 along Z');
-  assert.equal(madeBy(packed, 2), '');
-  assert.deepEqual(moveNotes(packed, 14), ['hole drilled by CYCLE81 along Z']);
-  assert.equal(moveTime(packed, 14), '  3.6 s');
-  assert.equal(moveTime(packed, 3), '  4.7124 s');
+  assert.equal(madeBy(packed, RND), 'rounding R5 inserted by RND');
+  assert.equal(madeBy(packed, CHF), 'chamfer 5 long inserted by CHF');
+  assert.equal(madeBy(packed, CHR), 'chamfer 7.0711 long inserted by CHR');
+  assert.equal(madeBy(packed, POSITIONING), 'made by HOLES1');
+  assert.equal(madeBy(packed, RAPID_DOWN), 'made by CYCLE81');
+  assert.equal(madeBy(packed, DRILLS[0]), 'hole drilled by CYCLE81 along Z');
+  assert.equal(madeBy(packed, RND - 1), '');
+  assert.deepEqual(moveNotes(packed, DRILLS[0]), ['hole drilled by CYCLE81 along Z']);
+  assert.equal(moveTime(packed, DRILLS[0]), '  3.6 s');
+  assert.equal(moveTime(packed, RND), '  4.7124 s', 'a quarter of a circle of 5 at F100');
   assert.equal(moveTime(packed, 0), '', 'unknown');
 });
