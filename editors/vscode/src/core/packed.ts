@@ -1,6 +1,6 @@
 // The toolpath in a compact form of typed arrays: what the extension sends to the webview. A million
-// moves take about 90 MB this way instead of hundreds as objects, and arrays travel to the webview
-// without being turned into JSON.
+// moves take about 100 MB this way (96 bytes each, arcs apart) instead of hundreds as objects, and
+// arrays travel to the webview without being turned into JSON.
 //
 // Moves are in the order the control executes them, so lines are not ascending: a loop repeats its
 // lines and a call runs the lines of another file. Each move has its own line in its file (an index
