@@ -85,7 +85,7 @@ export interface RenderStats {
   /** Chunks skipped as off screen. */
   culledChunks: number;
   arcsUnverified: number;
-  /** Hole rings drawn (those on screen, one per pixel). */
+  /** Hole rings drawn (those on screen, at most one per cell of the ring's radius). */
   holes: number;
 }
 
@@ -104,26 +104,31 @@ function addRing(path: PathLike, x: number, y: number, radius: number): void {
   path.ellipse(x, y, radius, radius, 0, 0, 2 * Math.PI, false);
 }
 
-/** Draws the rings of the holes on screen, in the colour of their move's style; rings on the same
- * pixel as the one before are drawn once. Returns how many were drawn. */
+/** Rings closer than this many pixels are one ring: they overlap too much to be told apart. */
+const RING_CELL_PX = HOLE_RADIUS_PX;
+
+/** Draws the rings of the holes on screen, in the colour of their move's style. A ring whose centre
+ * falls in a cell of RING_CELL_PX that already has one is left out, so that a dense pattern at a
+ * small zoom costs no more than the screen's cells. Returns how many were drawn. */
 function drawHoles(ctx: CanvasLike, newPath: () => PathLike, p: Projected, view: View, width: number, height: number, palette: Palette): number {
   const paths = new Map<string, PathLike>();
   let drawn = 0;
-  let lastX = NaN;
-  let lastY = NaN;
   const margin = HOLE_RADIUS_PX + 2;
+  const columns = Math.ceil((width + 2 * margin) / RING_CELL_PX) + 1;
+  const rows = Math.ceil((height + 2 * margin) / RING_CELL_PX) + 1;
+  const taken = p.holeSegment.length ? new Uint8Array(columns * rows) : new Uint8Array(0);
   for (let i = 0; i < p.holeSegment.length; i++) {
     const s = p.holeSegment[i];
     const [x, y] = toScreen(view, p.x0[s], p.y0[s]);
-    if (x < -margin || x > width + margin || y < -margin || y > height + margin) continue;
-    if (Math.abs(x - lastX) <= MIN_PIXELS && Math.abs(y - lastY) <= MIN_PIXELS) continue;
+    if (!(x >= -margin && x <= width + margin && y >= -margin && y <= height + margin)) continue;
+    const cell = Math.floor((y + margin) / RING_CELL_PX) * columns + Math.floor((x + margin) / RING_CELL_PX);
+    if (taken[cell]) continue;
+    taken[cell] = 1;
     const style = palette[styleOf(p.kind[s])];
     const colour = p.kind[s] & KIND_CONDITIONAL ? fadedColour(style.colour) : style.colour;
     let path = paths.get(colour);
     if (!path) paths.set(colour, (path = newPath()));
     addRing(path, x, y, HOLE_RADIUS_PX);
-    lastX = x;
-    lastY = y;
     drawn++;
   }
   for (const [colour, path] of paths) {

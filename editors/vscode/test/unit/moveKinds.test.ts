@@ -5,8 +5,8 @@
 import assert from 'node:assert/strict';
 import { test } from 'node:test';
 import {
-  concatPacked, drillAxisOf, FLAG_CYCLE, FLAG_HOLE_MASK, FLAG_INSERTED_CHF, FLAG_INSERTED_CHR, FLAG_INSERTED_MASK, FLAG_INSERTED_RND,
-  holeAxis, insertedName, MAX_CYCLE_NAMES, packMoves, revivePacked,
+  allocatePacked, concatPacked, drillAxisOf, FLAG_CYCLE, FLAG_HOLE_MASK, FLAG_HOLE_SHIFT, FLAG_INSERTED_CHF, FLAG_INSERTED_CHR, FLAG_INSERTED_MASK, FLAG_INSERTED_RND,
+  holeAxis, insertedName, MAX_CYCLE_NAMES, MOTIONS, packMoves, revivePacked,
 } from '../../src/core/packed';
 import { parsePreview, PreviewFormatError, type PreviewMove } from '../../src/core/preview';
 import { madeBy, moveNotes, moveTime } from '../../src/webview/describe';
@@ -233,4 +233,41 @@ test('the description says what made a move and how long it takes', () => {
   assert.equal(moveTime(packed, DRILLS[0]), '  3.6 s');
   assert.equal(moveTime(packed, RND), '  4.7124 s', 'a quarter of a circle of 5 at F100');
   assert.equal(moveTime(packed, 0), '', 'unknown');
+});
+
+test('a dense pattern draws at most a ring per cell of the ring\'s radius, and every ring when zoomed in (figures printed)', () => {
+  // 250,000 holes on a 500 x 500 grid 1 apart, each drilled by one CYCLE81 feed move along Z.
+  const side = 500;
+  const count = side * side;
+  const packed = allocatePacked(count, 0);
+  const drillFlags = FLAG_CYCLE | (3 << FLAG_HOLE_SHIFT);
+  for (let i = 0; i < count; i++) {
+    const x = i % side;
+    const y = Math.floor(i / side);
+    packed.line[i] = i + 1;
+    packed.motion[i] = MOTIONS.indexOf('G1');
+    packed.flags[i] = drillFlags;
+    packed.start.set([x, y, 1], i * 3);
+    packed.end.set([x, y, -5], i * 3);
+  }
+  const p = project(packed, 'G17');
+  assert.equal(p.holeSegment.length, count);
+  const canvas = { strokeStyle: '' as unknown, fillStyle: '' as unknown, lineWidth: 1, setLineDash() {}, fillRect() {}, clearRect() {}, stroke() {} };
+  const newPath = () => ({ moveTo() {}, lineTo() {}, ellipse() {} });
+  const fitted = fitView(p.bounds, 800, 600);
+  const started = performance.now();
+  const whole = render(canvas, newPath, p, fitted, 800, 600, '#000');
+  const ms = performance.now() - started;
+  const cells = Math.ceil((800 + 2 * (HOLE_RADIUS_PX + 2)) / HOLE_RADIUS_PX + 1) * Math.ceil((600 + 2 * (HOLE_RADIUS_PX + 2)) / HOLE_RADIUS_PX + 1);
+  console.log(`250,000 holes fitted in 800 x 600: ${whole.holes} rings drawn in ${ms.toFixed(0)} ms`);
+  assert.ok(whole.holes > 0 && whole.holes <= cells && whole.holes < count / 2, `${whole.holes} rings`);
+  // Zoomed so that holes are 20 pixels apart: every hole on screen has its ring.
+  const near = { scale: 20, offsetX: 10, offsetY: 590 };
+  const zoomed = render(canvas, newPath, p, near, 800, 600, '#000');
+  const onScreen = [...p.holeSegment].filter((s) => {
+    const [x, y] = toScreen(near, p.x0[s], p.y0[s]);
+    return x >= -(HOLE_RADIUS_PX + 2) && x <= 800 + HOLE_RADIUS_PX + 2 && y >= -(HOLE_RADIUS_PX + 2) && y <= 600 + HOLE_RADIUS_PX + 2;
+  }).length;
+  assert.equal(zoomed.holes, onScreen);
+  assert.ok(onScreen > 1000);
 });
