@@ -2,7 +2,8 @@
 // `sinumerik-lsp preview`), read defensively: a malformed answer is an error with a clear message,
 // never a picture with invented numbers. The moves come in the order the control executes them;
 // the fields that say where a move comes from (pass, file, stack, assumed, conditional) are
-// optional, so that the answer of an older server that lists each block once reads the same.
+// optional, so that the answer of an older server that lists each block once reads the same; so are
+// those that say what made a move (inserted, cycle) and its time.
 
 /** Axis name to value; an axis that is missing is unknown. */
 export type AxisValues = Record<string, number>;
@@ -44,6 +45,13 @@ export interface PreviewMove {
   assumed: string[];
   /** The move is on a way whose condition the analysis could not decide. */
   conditional: boolean;
+  /** A rounding or chamfer the control inserts at a corner (`RND`, `CHF`, `CHR`; the server may name
+   * others later); null for a programmed move. It has the line of the block that programs it. */
+  inserted: string | null;
+  /** The standard cycle or hole pattern that made the move (`CYCLE81`, `HOLES1`, ...); null otherwise. */
+  cycle: string | null;
+  /** The move's machining time in seconds (`time_s`); null when unknown or when the server has no times. */
+  time: number | null;
 }
 
 export interface PreviewResult {
@@ -137,6 +145,18 @@ function entryState(value: unknown): Record<string, string> {
   return out;
 }
 
+function optionalName(value: unknown, where: string, field: string): string | null {
+  if (value === null || value === undefined) return null;
+  if (typeof value !== 'string' || value === '') fail(where, `${field} is not a name`);
+  return value.toUpperCase();
+}
+
+function optionalSeconds(value: unknown, where: string): number | null {
+  if (value === null || value === undefined) return null;
+  if (typeof value !== 'number' || !Number.isFinite(value) || value < 0) fail(where, 'time_s is not a number of seconds');
+  return value;
+}
+
 function moveOf(value: unknown, index: number): PreviewMove {
   const where = `moves[${index}]`;
   if (!isObject(value)) fail(where, 'expected an object');
@@ -165,6 +185,9 @@ function moveOf(value: unknown, index: number): PreviewMove {
     stack: stackOf(value.stack, where),
     assumed: axisNames(value.assumed, where, 'assumed'),
     conditional,
+    inserted: optionalName(value.inserted, where, 'inserted'),
+    cycle: optionalName(value.cycle, where, 'cycle'),
+    time: optionalSeconds(value.time_s, where),
   };
 }
 

@@ -3,7 +3,7 @@
 // arrays, for the page and for unit tests under Node.
 
 import { fileLabel } from '../core/files';
-import { AXES, blockText, FLAG_ASSUMED_X, FLAG_CONDITIONAL, type PackedToolpath } from '../core/packed';
+import { AXES, blockText, FLAG_ASSUMED_X, FLAG_CONDITIONAL, FLAG_CYCLE, holeAxis, insertedName, type PackedToolpath } from '../core/packed';
 
 /** Where a move comes from: its block number, its pass of `passes` (when its block runs more than
  * once) and its line, with the file's name for a move of a called program. */
@@ -28,9 +28,49 @@ export function callPath(packed: PackedToolpath, move: number): string {
   return sites.length ? `called at ${sites.join(', ')}` : '';
 }
 
-/** The notes on a move that is conditional or rests on an assumed entry state, one per line. */
+/** A length or radius for the words of a move: at most four decimals. */
+function amount(value: number): string {
+  return String(Number(value.toFixed(4)));
+}
+
+/** The length of a straight move over the axes known at both ends. */
+function straightLength(packed: PackedToolpath, move: number): number {
+  let sum = 0;
+  for (let k = 0; k < 3; k++) {
+    const d = packed.end[move * 3 + k] - packed.start[move * 3 + k];
+    if (!Number.isNaN(d)) sum += d * d;
+  }
+  return Math.sqrt(sum);
+}
+
+/** What made a move that the program does not write as a block of its own: a rounding or chamfer the
+ * control inserts at a corner (`rounding R5 inserted by RND`), a cycle's move, a hole; or ''. */
+export function madeBy(packed: PackedToolpath, move: number): string {
+  const flags = packed.flags[move];
+  const inserted = insertedName(flags);
+  if (inserted) {
+    const arc = packed.arcOf[move];
+    if (arc >= 0) return `rounding R${amount(packed.arcRadius[arc])} inserted by ${inserted}`;
+    return `chamfer ${amount(straightLength(packed, move))} long inserted by ${inserted}`;
+  }
+  if (!(flags & FLAG_CYCLE)) return '';
+  const name = packed.cycleNames[packed.cycleOf[move]] || 'a cycle';
+  const axis = holeAxis(flags);
+  return axis >= 0 ? `hole drilled by ${name} along ${AXES[axis]}` : `made by ${name}`;
+}
+
+/** A move's machining time for its description (`  3.6 s`), or '' when it is not known. */
+export function moveTime(packed: PackedToolpath, move: number): string {
+  const seconds = packed.time[move];
+  return seconds === undefined || Number.isNaN(seconds) ? '' : `  ${amount(seconds)} s`;
+}
+
+/** The notes on a move that is inserted, made by a cycle, conditional or rests on an assumed entry
+ * state, one per line. */
 export function moveNotes(packed: PackedToolpath, move: number): string[] {
   const notes: string[] = [];
+  const made = madeBy(packed, move);
+  if (made) notes.push(made);
   const flags = packed.flags[move];
   if (flags & FLAG_CONDITIONAL) notes.push('conditional: on a way whose condition the analysis could not decide');
   const assumed = AXES.filter((_, k) => flags & (FLAG_ASSUMED_X << k));

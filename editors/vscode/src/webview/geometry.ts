@@ -3,7 +3,9 @@
 // a line causes).
 // Plain functions on typed arrays, so that they run in the webview and in unit tests under Node.
 
-import { FLAG_CLOCKWISE, FLAG_CONDITIONAL, FLAG_RAPID, FLAG_UNCERTAIN_X, type PackedToolpath } from '../core/packed';
+import {
+  FLAG_CLOCKWISE, FLAG_CONDITIONAL, FLAG_INSERTED_MASK, FLAG_RAPID, FLAG_UNCERTAIN_X, holeAxis, type PackedToolpath,
+} from '../core/packed';
 
 export type Plane = 'G17' | 'G18' | 'G19';
 
@@ -23,6 +25,13 @@ export const KIND_ARC = 4;
 export const KIND_ARC_UNVERIFIED = 8;
 /** A move on a way whose condition the analysis could not decide. */
 export const KIND_CONDITIONAL = 16;
+/** A rounding or chamfer the control inserts at a corner. */
+export const KIND_INSERTED = 32;
+/** A hole: a drilling move along the axis perpendicular to the plane, drawn as a ring at its position. */
+export const KIND_HOLE = 64;
+
+/** The radius of a hole's ring on screen, in pixels (the tool's radius is not known). */
+export const HOLE_RADIUS_PX = 4;
 
 /** Segments per bounding box used to skip what is off screen. */
 export const CHUNK = 256;
@@ -55,6 +64,8 @@ export interface Projected {
   hidden: number;
   /** Segments drawn for conditional moves. */
   conditional: number;
+  /** The segments that are holes (kind KIND_HOLE), in order; a hole drilled in several pecks is one. */
+  holeSegment: Uint32Array;
 }
 
 export interface Bounds {
@@ -122,6 +133,9 @@ export function project(packed: PackedToolpath, plane: Plane): Projected {
   let count = 0;
   let hidden = 0;
   let conditional = 0;
+  // The tool axis of the plane view: the one the picture does not show.
+  const across = 3 - h - v;
+  const holes: number[] = [];
   for (let i = 0; i < n; i++) {
     const sh = packed.start[i * 3 + h];
     const sv = packed.start[i * 3 + v];
@@ -137,6 +151,17 @@ export function project(packed: PackedToolpath, plane: Plane): Projected {
     if (flags & FLAG_CONDITIONAL) {
       k |= KIND_CONDITIONAL;
       conditional++;
+    }
+    if (flags & FLAG_INSERTED_MASK) k |= KIND_INSERTED;
+    if (holeAxis(flags) === across) {
+      // The pecks of one hole (CYCLE83) are one ring: the same line drilling again at the same place.
+      const last = holes.length ? holes[holes.length - 1] : -1;
+      const lastMove = last >= 0 ? moveIndex[last] : -1;
+      const again = last >= 0 && x0[last] === sh && y0[last] === sv && packed.line[lastMove] === packed.line[i] && packed.file[lastMove] === packed.file[i];
+      if (!again) {
+        k |= KIND_HOLE;
+        holes.push(count);
+      }
     }
     const arc = packed.arcOf[i];
     if (arc >= 0) {
@@ -199,6 +224,7 @@ export function project(packed: PackedToolpath, plane: Plane): Projected {
   }
   return {
     plane, count, moveIndex, line, kind, x0, y0, x1, y1, cx, cy, rx, ry, a0, sweep, chunkBox, bounds, hidden, conditional,
+    holeSegment: Uint32Array.from(holes),
   };
 }
 
@@ -303,4 +329,29 @@ export function pick(p: Projected, view: View, sx: number, sy: number, tolerance
     }
   }
   return best;
+}
+
+/** The hole whose ring (of HOLE_RADIUS_PX, plus `tolerancePx`) is nearest to the screen point, as
+ * its segment, or -1. */
+export function pickHole(p: Projected, view: View, sx: number, sy: number, tolerancePx = 3): number {
+  const reach = HOLE_RADIUS_PX + tolerancePx;
+  let best = -1;
+  let bestDistance = reach;
+  for (let i = 0; i < p.holeSegment.length; i++) {
+    const s = p.holeSegment[i];
+    const [hx, hy] = toScreen(view, p.x0[s], p.y0[s]);
+    const distance = Math.hypot(hx - sx, hy - sy);
+    if (distance <= bestDistance) {
+      best = s;
+      bestDistance = distance;
+    }
+  }
+  return best;
+}
+
+/** What the pointer is on: a hole when it is inside a hole's ring (a ring covers the rapid moves that
+ * lead to it and away), else the nearest segment; -1 for nothing. */
+export function pickMove(p: Projected, view: View, sx: number, sy: number): number {
+  const hole = pickHole(p, view, sx, sy);
+  return hole >= 0 ? hole : pick(p, view, sx, sy);
 }

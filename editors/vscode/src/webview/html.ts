@@ -46,6 +46,9 @@ export function toolpathHtml(options: PageOptions): string {
   body.vscode-light .swatch.uncertain { border-top-color: #9a6b00; } body.vscode-light .swatch.cursor { border-top-color: #e07000; }
   .swatch.conditional { border-top: 2px solid #3b8eea; opacity: 0.5; }
   body.vscode-light .swatch.conditional { border-top-color: #0b5cad; }
+  .swatch.inserted { border-top: 3px solid #3b8eea; } body.vscode-light .swatch.inserted { border-top-color: #0b5cad; }
+  .ring { display: inline-block; width: 6px; height: 6px; border: 1.5px solid #3b8eea; border-radius: 50%; }
+  body.vscode-light .ring { border-color: #0b5cad; }
   #canvas-box { position: relative; flex: 1; min-height: 0; }
   canvas { position: absolute; inset: 0; width: 100%; height: 100%; cursor: crosshair; }
   #status { flex: none; padding: 2px 8px; border-top: 1px solid var(--vscode-panel-border, #444); white-space: nowrap;
@@ -63,6 +66,8 @@ export function toolpathHtml(options: PageOptions): string {
   <span class="legend"><span class="swatch feed"></span>feed</span>
   <span class="legend"><span class="swatch rapid"></span>rapid</span>
   <span class="legend" title="after a label, jump or loop the control may take another path"><span class="swatch uncertain"></span>uncertain</span>
+  <span class="legend" title="a rounding or chamfer the control inserts at a corner (RND, CHF, CHR): drawn wider"><span class="swatch inserted"></span>inserted</span>
+  <span class="legend" title="a hole a drilling cycle makes along the tool axis, in the plane across that axis; click it for its line"><span class="ring"></span>hole</span>
   <span class="legend" title="faded: on a way whose condition the analysis could not decide"><span class="swatch conditional"></span>conditional</span>
   <span class="legend" title="every move of the cursor's line: each pass, and for a call every move of the called program"><span class="swatch cursor"></span>cursor</span>
 </div>

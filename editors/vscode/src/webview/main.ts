@@ -5,9 +5,9 @@
 import { fileLabel } from '../core/files';
 import type { FromPage, ToPage } from '../core/messages';
 import { AXES, concatPacked, emptyPacked, FLAG_UNCERTAIN_X, MOTIONS, revivePacked, type PackedToolpath } from '../core/packed';
-import { assumedEntryState, callPath, moveNotes, moveOrigin } from './describe';
+import { assumedEntryState, callPath, moveNotes, moveOrigin, moveTime } from './describe';
 import {
-  fitView, guessPlane, KIND_UNCERTAIN, panBy, pick, PLANE_NAMES, project, revealPoint, zoomAt, type Plane, type Projected, type View,
+  fitView, guessPlane, KIND_UNCERTAIN, panBy, pickMove, PLANE_NAMES, project, revealPoint, zoomAt, type Plane, type Projected, type View,
 } from './geometry';
 import { LIGHT_STYLES, render, STYLES, type RenderStats } from './render';
 import { fileIndexOf, passesOf, segmentsCausedBy } from './selection';
@@ -158,6 +158,8 @@ function updateStatus(segments: Uint32Array): void {
     `plane ${p.plane} ${PLANE_NAMES[p.plane]}`,
     state.units,
   ];
+  const holes = p.holeSegment.length;
+  if (holes) parts.push(`${holes.toLocaleString('en')} ${holes === 1 ? 'hole' : 'holes'}`);
   if (p.hidden) parts.push(`${p.hidden.toLocaleString('en')} not drawn (position unknown in this plane)`);
   if (state.stats?.thinned) parts.push(`${state.stats.thinned.toLocaleString('en')} thinned at this zoom`);
   if (state.stats?.arcsUnverified) parts.push(`${state.stats.arcsUnverified} arcs drawn straight (centre does not fit)`);
@@ -182,7 +184,7 @@ function describe(segment: number): string {
     .filter((text) => text !== '')
     .join(' ');
   const feed = Number.isNaN(packed.feed[move]) ? '' : ` F${packed.feed[move]}`;
-  const lines = [`${moveOrigin(packed, move, passes(move))}  ${MOTIONS[packed.motion[move]]}  → ${end}${feed}`];
+  const lines = [`${moveOrigin(packed, move, passes(move))}  ${MOTIONS[packed.motion[move]]}  → ${end}${feed}${moveTime(packed, move)}`];
   const calls = callPath(packed, move);
   if (calls) lines.push(calls);
   lines.push(...moveNotes(packed, move));
@@ -292,7 +294,7 @@ canvas.addEventListener('pointermove', (event) => {
     return;
   }
   if (!view) return;
-  const segment = pick(state.projected, view, event.offsetX, event.offsetY);
+  const segment = pickMove(state.projected, view, event.offsetX, event.offsetY);
   if (segment < 0) {
     tip.style.display = 'none';
     return;
@@ -306,7 +308,8 @@ canvas.addEventListener('pointerup', (event) => {
   const wasDrag = drag?.moved;
   drag = null;
   if (wasDrag || !state.view) return;
-  const segment = pick(state.projected, state.view, event.offsetX, event.offsetY);
+  // A click on a hole's ring picks the hole, whose line is the cycle's call or positioning block.
+  const segment = pickMove(state.projected, state.view, event.offsetX, event.offsetY);
   if (segment >= 0) {
     const move = state.projected.moveIndex[segment];
     const file = state.packed.file[move];

@@ -2,10 +2,12 @@
 // segments shorter than a pixel are joined into one line (thinned), so that a program of a million
 // moves draws in a few tens of milliseconds. The canvas is an interface so that unit tests can record
 // what would be drawn. Moves on a way whose condition the analysis could not decide are drawn in their
-// kind's style, faded.
+// kind's style, faded. A rounding or chamfer the control inserts is drawn as what it is (an arc or a
+// line) in the feed's colour, a little wider; a hole is a ring at its position.
 
 import {
-  CHUNK, KIND_ARC, KIND_ARC_UNVERIFIED, KIND_CONDITIONAL, KIND_RAPID, KIND_UNCERTAIN, toScreen, type Projected, type View,
+  CHUNK, HOLE_RADIUS_PX, KIND_ARC, KIND_ARC_UNVERIFIED, KIND_CONDITIONAL, KIND_HOLE, KIND_INSERTED, KIND_RAPID, KIND_UNCERTAIN,
+  toScreen, type Projected, type View,
 } from './geometry';
 
 /** The part of CanvasRenderingContext2D / Path2D used here. */
@@ -31,15 +33,17 @@ export interface Style {
   dash: number[];
 }
 
-export type Palette = Record<'feed' | 'rapid' | 'uncertainFeed' | 'uncertainRapid' | 'highlight', Style>;
+export type Palette = Record<'feed' | 'rapid' | 'uncertainFeed' | 'uncertainRapid' | 'highlight' | 'inserted', Style>;
 
-/** For dark themes: feed, rapid, both when a plane coordinate is uncertain, and the cursor's block. */
+/** For dark themes: feed, rapid, both when a plane coordinate is uncertain, the cursor's block, and an
+ * inserted rounding or chamfer at feed. */
 export const STYLES: Palette = {
   feed: { colour: '#3b8eea', width: 1.5, dash: [] },
   rapid: { colour: '#e05252', width: 1.5, dash: [6, 4] },
   uncertainFeed: { colour: '#d7a600', width: 1.5, dash: [2, 3] },
   uncertainRapid: { colour: '#d7a600', width: 1.5, dash: [6, 3, 2, 3] },
   highlight: { colour: '#ffd500', width: 4, dash: [] },
+  inserted: { colour: '#3b8eea', width: 3, dash: [] },
 };
 
 /** The same styles in darker colours, for light themes. */
@@ -49,13 +53,15 @@ export const LIGHT_STYLES: Palette = {
   uncertainFeed: { ...STYLES.uncertainFeed, colour: '#9a6b00' },
   uncertainRapid: { ...STYLES.uncertainRapid, colour: '#9a6b00' },
   highlight: { ...STYLES.highlight, colour: '#e07000' },
+  inserted: { ...STYLES.inserted, colour: '#0b5cad' },
 };
 
 export type StyleName = keyof Palette;
 
 export function styleOf(kind: number): StyleName {
   if (kind & KIND_UNCERTAIN) return kind & KIND_RAPID ? 'uncertainRapid' : 'uncertainFeed';
-  return kind & KIND_RAPID ? 'rapid' : 'feed';
+  if (kind & KIND_RAPID) return 'rapid';
+  return kind & KIND_INSERTED ? 'inserted' : 'feed';
 }
 
 /** The opacity of conditional moves, as the two hex digits appended to a `#rrggbb` colour. */
@@ -79,6 +85,8 @@ export interface RenderStats {
   /** Chunks skipped as off screen. */
   culledChunks: number;
   arcsUnverified: number;
+  /** Hole rings drawn (those on screen, at most one per cell of the ring's radius). */
+  holes: number;
 }
 
 /** One path per style with its own pen, so that interleaved styles each thin on their own. */
@@ -89,6 +97,48 @@ class Pen {
 }
 
 const MIN_PIXELS = 0.75;
+
+/** Adds a ring around a screen point to a path. */
+function addRing(path: PathLike, x: number, y: number, radius: number): void {
+  path.moveTo(x + radius, y);
+  path.ellipse(x, y, radius, radius, 0, 0, 2 * Math.PI, false);
+}
+
+/** Rings closer than this many pixels are one ring: they overlap too much to be told apart. */
+const RING_CELL_PX = HOLE_RADIUS_PX;
+
+/** Draws the rings of the holes on screen, in the colour of their move's style. A ring whose centre
+ * falls in a cell of RING_CELL_PX that already has one is left out, so that a dense pattern at a
+ * small zoom costs no more than the screen's cells. Returns how many were drawn. */
+function drawHoles(ctx: CanvasLike, newPath: () => PathLike, p: Projected, view: View, width: number, height: number, palette: Palette): number {
+  const paths = new Map<string, PathLike>();
+  let drawn = 0;
+  const margin = HOLE_RADIUS_PX + 2;
+  const columns = Math.ceil((width + 2 * margin) / RING_CELL_PX) + 1;
+  const rows = Math.ceil((height + 2 * margin) / RING_CELL_PX) + 1;
+  const taken = p.holeSegment.length ? new Uint8Array(columns * rows) : new Uint8Array(0);
+  for (let i = 0; i < p.holeSegment.length; i++) {
+    const s = p.holeSegment[i];
+    const [x, y] = toScreen(view, p.x0[s], p.y0[s]);
+    if (!(x >= -margin && x <= width + margin && y >= -margin && y <= height + margin)) continue;
+    const cell = Math.floor((y + margin) / RING_CELL_PX) * columns + Math.floor((x + margin) / RING_CELL_PX);
+    if (taken[cell]) continue;
+    taken[cell] = 1;
+    const style = palette[styleOf(p.kind[s])];
+    const colour = p.kind[s] & KIND_CONDITIONAL ? fadedColour(style.colour) : style.colour;
+    let path = paths.get(colour);
+    if (!path) paths.set(colour, (path = newPath()));
+    addRing(path, x, y, HOLE_RADIUS_PX);
+    drawn++;
+  }
+  for (const [colour, path] of paths) {
+    ctx.strokeStyle = colour;
+    ctx.lineWidth = 1.5;
+    ctx.setLineDash([]);
+    ctx.stroke(path);
+  }
+  return drawn;
+}
 
 /** Adds segment `s` to `pen`; returns whether a command was issued. */
 function addSegment(p: Projected, view: View, s: number, pen: Pen): boolean {
@@ -130,10 +180,10 @@ export function render(
   ctx.clearRect(0, 0, width, height);
   ctx.fillStyle = background;
   ctx.fillRect(0, 0, width, height);
-  const stats: RenderStats = { visited: 0, drawn: 0, thinned: 0, culledChunks: 0, arcsUnverified: 0 };
+  const stats: RenderStats = { visited: 0, drawn: 0, thinned: 0, culledChunks: 0, arcsUnverified: 0, holes: 0 };
   // One pen per style and per faded or not: index 2 * style + (conditional ? 1 : 0), looked up by kind.
   const names = Object.keys(palette) as StyleName[];
-  const penOfKind = new Uint8Array(KIND_CONDITIONAL * 2);
+  const penOfKind = new Uint8Array(KIND_HOLE * 2);
   penOfKind.forEach((_, kind) => (penOfKind[kind] = 2 * names.indexOf(styleOf(kind)) + (kind & KIND_CONDITIONAL ? 1 : 0)));
   const pens: (Pen | undefined)[] = [];
   const penFor = (kind: number) => (pens[penOfKind[kind]] ??= new Pen(newPath()));
@@ -165,9 +215,18 @@ export function render(
     ctx.setLineDash(style.dash);
     ctx.stroke(pen.path);
   });
+  stats.holes = drawHoles(ctx, newPath, p, view, width, height, palette);
   if (highlight.length > 0) {
     const pen = new Pen(newPath());
-    for (let i = 0; i < highlight.length; i++) addSegment(p, view, highlight[i], pen);
+    for (let i = 0; i < highlight.length; i++) {
+      const s = highlight[i];
+      addSegment(p, view, s, pen);
+      if (p.kind[s] & KIND_HOLE) {
+        const [x, y] = toScreen(view, p.x0[s], p.y0[s]);
+        addRing(pen.path, x, y, HOLE_RADIUS_PX);
+        pen.x = NaN;
+      }
+    }
     const style = palette.highlight;
     ctx.strokeStyle = style.colour;
     ctx.lineWidth = style.width;

@@ -3,7 +3,7 @@
 
 import { ToolpathLoader } from '../../src/core/loader';
 import type { FromPage, PlaneName, ToPage } from '../../src/core/messages';
-import { allocatePacked, FLAG_RAPID } from '../../src/core/packed';
+import { allocatePacked, FLAG_CYCLE, FLAG_HOLE_SHIFT, FLAG_RAPID } from '../../src/core/packed';
 
 const sent: FromPage[] = [];
 (window as unknown as Record<string, unknown>).acquireVsCodeApi = () => ({
@@ -57,6 +57,28 @@ const harness = {
     }
     const g = ++generation;
     post({ type: 'reset', generation: g, title: `synthetic-${count}`, units: 'mm', plane: 'G17' });
+    post({ type: 'append', generation: g, packed: p });
+    post({ type: 'done', generation: g });
+  },
+  /** A drilling pattern of `side` x `side` holes 1 apart, each one CYCLE81 feed move along Z, packed
+   * directly: the cost of the rings of a dense pattern. */
+  loadHoles(side: number) {
+    const count = side * side;
+    const p = allocatePacked(count, 0);
+    p.cycleNames.push('CYCLE81');
+    for (let i = 0; i < count; i++) {
+      const x = i % side;
+      const y = Math.floor(i / side);
+      p.line[i] = i + 1;
+      p.outerLine[i] = i + 1;
+      p.motion[i] = 1;
+      p.flags[i] = FLAG_CYCLE | (3 << FLAG_HOLE_SHIFT);
+      p.cycleOf[i] = 1;
+      p.start.set([x, y, 1], i * 3);
+      p.end.set([x, y, -5], i * 3);
+    }
+    const g = ++generation;
+    post({ type: 'reset', generation: g, title: `holes-${count}`, units: 'mm', plane: 'G17' });
     post({ type: 'append', generation: g, packed: p });
     post({ type: 'done', generation: g });
   },

@@ -1,8 +1,9 @@
 // The toolpath page in headless Chromium: it draws the demo program (feed solid, rapid dashed, arcs,
 // uncertain moves), highlights the cursor's line, reveals a clicked line, pans and zooms, matches
 // the committed screenshot's outline, draws the moves of called programs and highlights the moves a
-// call line causes, fades conditional moves, and prints its drawing time for a million moves.
-// Set UPDATE_SCREENSHOT=1 to rewrite the baseline and docs/toolpath-preview.png.
+// call line causes, fades conditional moves, draws inserted roundings and chamfers and the holes of a
+// drilling pattern (a click on a hole reveals its line), and prints its drawing time for a million
+// moves. Set UPDATE_SCREENSHOT=1 to rewrite the baselines and docs/toolpath-preview.png.
 import assert from 'node:assert/strict';
 import * as fs from 'node:fs';
 import { createRequire } from 'node:module';
@@ -16,6 +17,7 @@ const root = path.resolve(here, '..', '..');
 const require = createRequire(import.meta.url);
 const { toolpathHtml } = require(path.join(root, 'out', 'src', 'webview', 'html.js'));
 const baselineFile = path.join(here, 'toolpath.baseline.json');
+const contoursBaselineFile = path.join(here, 'contours.baseline.json');
 const docsScreenshot = path.resolve(root, '..', '..', 'docs', 'toolpath-preview.png');
 const update = process.env.UPDATE_SCREENSHOT === '1';
 
@@ -317,6 +319,104 @@ test('a conditional move is drawn faded, and the legend and the status say what 
   assert.match(status, / · 1 conditional \(faded\) · /);
   const legend = await page.evaluate('(() => { const item = document.querySelector(".swatch.conditional").parentElement; return [item.textContent, item.title]; })()');
   assert.deepEqual(legend, ['conditional', 'faded: on a way whose condition the analysis could not decide']);
+});
+
+const HOLES = [[30, 10], [45, 10], [60, 10], [75, 10]];
+
+test('roundings are arcs, chamfers lines, and the holes of a pattern rings that reveal their line', async () => {
+  const contours = fs.readFileSync(path.join(root, 'test', 'fixtures', 'contours_drill.preview.json'), 'utf8');
+  await page.evaluate('harness.setCursor(1)');
+  await page.evaluate(`harness.loadPreview(${contours}, 'contours_drill.mpf', 17, null, 4)`);
+  await until('toolpathDebug.state.done && toolpathDebug.state.title === "contours_drill.mpf"', 'the drawing of contours_drill.mpf');
+  await page.evaluate('toolpathDebug.redrawNow()');
+  const count = JSON.parse(contours).moves.length;
+  assert.ok(await page.evaluate(`document.getElementById("status").textContent.startsWith(
+    "contours_drill.mpf: ${count} moves · plane G17 X/Y · mm · 4 holes · 1 not drawn (position unknown in this plane)")`));
+
+  // The rounding (T106) and the chamfers (T107, CHF and CHR) cut their corners: ink on the inserted
+  // element's middle, none on the programmed corner.
+  const corners = [
+    ['RND at X50 Y0', [45 + 5 * Math.SQRT1_2, 5 - 5 * Math.SQRT1_2], [50, 0]],
+    ['CHF at X100 Y50', [100 - 1.7678, 50 + 1.7678], [100, 50]],
+    ['CHR at X100 Y100', [97.5, 97.5], [100, 100]],
+  ];
+  for (const [what, middle, corner] of corners) {
+    const [mx, my] = await screen(...middle);
+    assert.ok(await hasColour(mx, my, FEED), `${what}: the inserted element is drawn`);
+    const [cx, cy] = await screen(...corner);
+    assert.ok((await colours(cx, cy, 2)).every((c) => near(c, BACKGROUND, 30)), `${what}: the sharp corner is not`);
+  }
+
+  // A ring at each hole: in the feed colour on the ring above its centre, background inside and outside it.
+  const view = await page.evaluate('toolpathDebug.state.view');
+  for (const [x, y] of HOLES) {
+    const [hx, hy] = await screen(x, y);
+    assert.ok(await hasColour(hx, hy - 4, FEED, 1), `the ring of the hole at X${x} Y${y}`);
+    assert.ok((await colours(hx, hy - 8, 1)).every((c) => near(c, BACKGROUND, 30)), `outside the ring at X${x} Y${y}`);
+  }
+  assert.ok(view.scale > 2, 'holes 15 apart are far more than a ring apart');
+
+  // Hovering a hole's ring names the drilling move; a click reveals the line of HOLES1.
+  const [ox, oy] = await canvasOrigin();
+  const [hx, hy] = await screen(45, 10);
+  await page.hover(ox + hx, oy + hy - 4);
+  // The time is the fixture's: the words around it are the page's.
+  assert.match(await page.evaluate('document.getElementById("tip").textContent'),
+    /^N130, line 15 {2}G1 {2}→ X45 Y10 Z-5 F100 {2}3\.6 s\nhole drilled by CYCLE81 along Z$/);
+  const reveals = await page.evaluate('harness.sent.filter((m) => m.type === "reveal").length');
+  await page.mouse('mousePressed', ox + hx, oy + hy - 4);
+  await page.mouse('mouseReleased', ox + hx, oy + hy - 4);
+  await until(`harness.sent.filter((m) => m.type === "reveal").length > ${reveals}`, 'a reveal message');
+  assert.deepEqual(await page.evaluate('harness.sent[harness.sent.length - 1]'), { type: 'reveal', line: 15 });
+  await page.evaluate('toolpathDebug.redrawNow()');
+  assert.match(await page.evaluate('document.getElementById("status").textContent'), / · N130, line 15$/);
+  for (const [x, y] of HOLES) {
+    const [sx, sy] = await screen(x, y);
+    assert.ok(await hasColour(sx, sy - 4, HIGHLIGHT, 1), `the hole at X${x} Y${y} is highlighted with its line`);
+  }
+
+  // Hovering the rounding names what inserted it.
+  const [rx, ry] = await screen(45 + 5 * Math.SQRT1_2, 5 - 5 * Math.SQRT1_2);
+  await page.hover(ox + rx, oy + ry);
+  assert.match(await page.evaluate('document.getElementById("tip").textContent'),
+    /^N50, line 7 {2}G3 {2}→ X50 Y5 Z-2 F100 {2}4\.7124 s\nrounding R5 inserted by RND$/);
+
+  // Seen from the side (Z/X), the drilling is lines along Z and there is no ring.
+  await page.evaluate('(() => { const s = document.getElementById("plane"); s.value = "G18"; s.dispatchEvent(new Event("change")); })()');
+  await page.evaluate('toolpathDebug.redrawNow()');
+  assert.equal(await page.evaluate('toolpathDebug.state.projected.holeSegment.length'), 0);
+  assert.doesNotMatch(await page.evaluate('document.getElementById("status").textContent'), /holes/);
+  await page.evaluate('(() => { const s = document.getElementById("plane"); s.value = "auto"; s.dispatchEvent(new Event("change")); })()');
+});
+
+test('the contours and holes match their committed outline', async () => {
+  await page.evaluate('harness.setCursor(1)');
+  await until('toolpathDebug.state.cursorLine === 1', 'the cursor message');
+  await page.evaluate('toolpathDebug.redrawNow()');
+  const grid = await inkGrid();
+  fs.writeFileSync(path.join(root, 'out', 'page', 'contours.png'), await page.screenshot());
+  if (update || !fs.existsSync(contoursBaselineFile)) {
+    fs.writeFileSync(contoursBaselineFile, JSON.stringify(grid, null, 1) + '\n');
+    console.log(`wrote ${contoursBaselineFile}`);
+  }
+  const baseline = JSON.parse(fs.readFileSync(contoursBaselineFile, 'utf8'));
+  let differing = 0;
+  grid.forEach((row, r) => [...row].forEach((cell, c) => (differing += cell === baseline[r][c] ? 0 : 1)));
+  assert.ok(differing <= 12, `${differing} of 1350 cells differ from the baseline:\n${grid.join('\n')}`);
+});
+
+test('a pattern of 250,000 holes draws its rings within a frame budget (figures printed)', async () => {
+  await page.evaluate('harness.loadHoles(500)');
+  await until('toolpathDebug.state.packed.count === 250000 && toolpathDebug.state.done', '250,000 holes', 60000);
+  const times = await page.evaluate(`(() => {
+    const out = [];
+    for (let i = 0; i < 5; i++) { toolpathDebug.redrawNow(); out.push(toolpathDebug.state.renderMs); }
+    return { times: out, stats: toolpathDebug.state.stats };
+  })()`);
+  const sorted = [...times.times].sort((a, b) => a - b);
+  console.log(`250,000 holes in Chromium: median redraw ${sorted[2].toFixed(1)} ms (best ${sorted[0].toFixed(1)}), ${times.stats.holes} rings drawn`);
+  assert.equal(await page.evaluate('toolpathDebug.state.projected.holeSegment.length'), 250000);
+  assert.ok(times.stats.holes > 1000 && times.stats.holes < 250000, `${times.stats.holes} rings`);
 });
 
 test('a million moves draw within a frame budget (figures printed)', async () => {

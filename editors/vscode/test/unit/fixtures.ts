@@ -14,6 +14,6 @@ export function readFixture(name: string): unknown {
 export function move(line: number, motion: string, start: Record<string, number>, end: Record<string, number>, extra: Partial<PreviewMove> = {}): PreviewMove {
   return {
     line, block: null, motion, start, end, mcs: null, arc: null, feed: 100, uncertain: [],
-    pass: null, file: null, stack: [], assumed: [], conditional: false, ...extra,
+    pass: null, file: null, stack: [], assumed: [], conditional: false, inserted: null, cycle: null, time: null, ...extra,
   } as PreviewMove;
 }
