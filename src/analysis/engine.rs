@@ -999,8 +999,15 @@ impl<'a> Engine<'a> {
                 }
                 Some(previous) => Some(previous + value),
                 None => {
+                    // Turning a modulo axis on by an increment from wherever it stands is usual
+                    // practice (`C=IC(720)`), not a likely mistake: information only.
+                    let code = if kind == AxisKind::Modulo {
+                        Code::ModuloIncrementOnUnknownPosition
+                    } else {
+                        Code::IncrementOnUnknownPosition
+                    };
                     diagnostics.push(Diagnostic::new(
-                        Code::IncrementOnUnknownPosition,
+                        code,
                         word.span,
                         format!("`{name}` moves incrementally, but its position is not known here, so the end point is unknown"),
                     ));
