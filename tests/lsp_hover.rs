@@ -32,6 +32,8 @@ const HOVERS: &[Case] = &[
     Case { config: None, file: "offset.mpf", program: "N10 G5$04", expected: &["**G54**", "Group 8 (settable work offset)", "Before this block: **G500**"] },
     Case { config: None, file: "block.mpf", program: "N10 G90 G0 X20 Z90 ; comm$0ent", expected: &["Modal state before this block", "**End point** (G0): X20 Z90"] },
     Case { config: None, file: "number.mpf", program: "N10 G90 G0 X20 Z90\nN2$00 G91 X5", expected: &["G90", "**End point** (G0): X25 Z90"] },
+    Case { config: Some(TURN), file: "diam90_g91.mpf", program: "N10 G90 DIAM90 G0 X40 Z5\nN20 G91 X$05", expected: &["X = 40.000 + 2 × 5.000 = **50.000** mm (G91: incremental)", "The increment is a radius"] },
+    Case { config: None, file: "g53.mpf", program: "N10 G90 G0 X0 Z0\nN20 TRANS X10\nN30 G53 X$05", expected: &["X = **5.000** mm in machine coordinates (G53/G153/SUPA", "In workpiece coordinates: X = **-5.000** mm"] },
     Case { config: None, file: "flow.mpf", program: "N10 G90 G0 X1\nMARKE:\nN20 X$02", expected: &["A label, jump or loop comes before this block"] },
 ];
 

@@ -274,6 +274,9 @@ pub fn explain_resolution(
     let axis_kind = config.axis(axis).map(|axis| axis.kind);
     let unit = units_label(config, axis_kind);
     let note = mode_note(resolution.mode, in_effect);
+    if resolution.mode == ResolutionMode::Machine {
+        return explain_machine_position(resolution, axis_kind, unit, &note);
+    }
     let mut text = String::new();
     let Some(end) = resolution.end else {
         let reason = resolution
@@ -303,7 +306,22 @@ pub fn explain_resolution(
     };
     // A sum is shown only where the analysis says plain arithmetic gives its end point, and where
     // it does here too.
+    // An increment that is a radius while positions show diameters (G91 under DIAM90, RIC under
+    // DIAMON) moves the diameter by twice its value: the sum says so.
+    let radius_increment = is_incremental(resolution.mode)
+        && resolution.shown_as_diameter
+        && !resolution.read_as_diameter;
     let formula = match (resolution.programmed, converted, resolution.start) {
+        (Some(programmed), Some(converted), Some(start))
+            if radius_increment && same(start + 2.0 * converted, end) =>
+        {
+            Some(format!(
+                "{axis} = {} + 2 × {} = **{}** {unit}",
+                term(start),
+                programmed_term(programmed),
+                fixed(end)
+            ))
+        }
         _ if !resolution.explained => None,
         (Some(programmed), Some(converted), Some(start))
             if is_incremental(resolution.mode) && same(start + converted, end) =>
@@ -344,7 +362,14 @@ pub fn explain_resolution(
             }
         },
     }
-    if resolution.shown_as_diameter {
+    if radius_increment {
+        let _ = write!(
+            text,
+            "\n\nThe increment is a radius (under DIAM90, G91 values are radii; RIC always is one): it changes the diameter by twice its value. Diameter {} {unit}, radius {} {unit}",
+            fixed(end),
+            fixed(end / 2.0)
+        );
+    } else if resolution.shown_as_diameter {
         let _ = write!(
             text,
             "\n\nDiameter {} {unit}, radius {} {unit}",
@@ -370,6 +395,53 @@ pub fn explain_resolution(
                 text,
                 "\n\nAfter the programmable frame (machine coordinates): {axis} = **{}** {unit}{radius_note}",
                 fixed(machine)
+            );
+        }
+    }
+    text
+}
+
+/// The hover of an axis word of a G53/G153/SUPA block: the machine position first (what the block
+/// programs), then where that lies in workpiece coordinates (what later blocks build on).
+fn explain_machine_position(
+    resolution: &WordResolution,
+    axis_kind: Option<AxisKind>,
+    unit: &str,
+    note: &str,
+) -> String {
+    let axis = &resolution.axis;
+    let transverse = axis_kind == Some(AxisKind::Transverse);
+    let mut text = match (resolution.machine, resolution.programmed) {
+        (Some(machine), _) => format!(
+            "{axis} = **{}** {unit}{} in machine coordinates ({note})",
+            fixed(machine),
+            if transverse { " (radius)" } else { "" }
+        ),
+        (None, Some(programmed)) => format!(
+            "{axis} = **{}** {unit} as programmed, in machine coordinates ({note})",
+            fixed(programmed * resolution.unit_factor.unwrap_or(1.0))
+        ),
+        (None, None) => format!("{axis} = **unknown** in machine coordinates: the value depends on a variable, parameter or function whose value is not known here ({note})"),
+    };
+    match resolution.end {
+        Some(end) => {
+            let _ = write!(
+                text,
+                "\n\nIn workpiece coordinates: {axis} = **{}** {unit}",
+                fixed(end)
+            );
+            if resolution.shown_as_diameter {
+                let _ = write!(text, " (diameter; radius {} {unit})", fixed(end / 2.0));
+            }
+        }
+        None => {
+            let reason = resolution
+                .unknown_reason
+                .clone()
+                .unwrap_or_else(|| "the analysis cannot follow this value here".to_string());
+            let _ = write!(
+                text,
+                "\n\nIn workpiece coordinates: {axis} = **unknown**: {reason}"
             );
         }
     }
