@@ -95,3 +95,40 @@ impl RawCycles {
         Ok(options)
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::config::parse_config_text;
+    use std::path::Path;
+
+    #[test]
+    fn the_cycles_table_sets_each_choice_and_rejects_unknown_values() {
+        let config = parse_config_text(
+            "[cycles]\nrestore_modal = false\nholes1_order = \"near_origin\"\ncycle801_order = \"unknown\"\n",
+            Path::new("sinumerik.toml"),
+        )
+        .expect("a valid table");
+        assert_eq!(
+            config.cycles,
+            CycleOptions {
+                restore_modal: false,
+                holes1_order: RowOrder::NearOrigin,
+                cycle801_order: GridOrder::Unknown,
+            }
+        );
+        let defaults = parse_config_text("", Path::new("sinumerik.toml")).expect("empty file");
+        assert_eq!(defaults.cycles, CycleOptions::default());
+        let error = parse_config_text(
+            "[cycles]\nholes1_order = \"nearest\"\n",
+            Path::new("sinumerik.toml"),
+        )
+        .expect_err("an unknown order");
+        let text = error.to_string();
+        assert!(
+            text.contains("holes1_order") && text.contains("nearest"),
+            "{text}"
+        );
+        assert!(parse_config_text("[cycles]\nsave = true\n", Path::new("sinumerik.toml")).is_err());
+    }
+}
