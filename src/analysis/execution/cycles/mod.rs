@@ -24,6 +24,11 @@ const PATTERNS: [&str; 3] = ["HOLES1", "HOLES2", "CYCLE801"];
 /// The tool axis of G17, G18 and G19 (reference §16.1).
 const TOOL_AXES: [&str; 3] = ["Z", "Y", "X"];
 
+/// Blocks one pattern call may make at most (holes times the blocks of the modal cycle): a larger
+/// pattern is not followed, so that one block cannot run the analysis for long. The blocks count
+/// towards the run's budget of executed blocks as well.
+const MAX_PATTERN_BLOCKS: usize = 1_000_000;
+
 /// What the interpreter keeps for the cycle models.
 #[derive(Default)]
 pub(super) struct CycleState {
@@ -311,6 +316,16 @@ impl<'a, 's> Interpreter<'a, 's> {
             );
         }
         let modal = control.level().modal_call.clone();
+        let per_hole = 1 + modal.as_ref().map_or(0, |modal| {
+            match drilling::plan(&modal.name, &modal.arguments).plan {
+                Plan::Steps { steps, .. } => 2 * steps.len(),
+                _ => 0,
+            }
+        });
+        if positions.len().saturating_mul(per_hole) > MAX_PATTERN_BLOCKS {
+            forget_axes(engine, self.config, &[first, second, TOOL_AXES[plane]]);
+            return;
+        }
         if modal.is_none() && call.name != "CYCLE801" {
             let message = format!(
                 "{}: no drilling cycle is called modally (alarm 62100): the control stops (M0) and, after NC start, approaches the positions without drilling",
@@ -364,6 +379,7 @@ impl<'a, 's> Interpreter<'a, 's> {
             .context
             .get_or_insert_with(|| SyntaxContext::new(config));
         let (block, _) = parse_line(text, context);
+        self.executed += 1;
         // The cycle's own blocks raise no finding of the program's (a feed that is not known shows
         // as a move without feed).
         let mut ignored = Vec::new();
