@@ -263,6 +263,12 @@ codes! {
     RestartByPlc = "E407", Information, "GOTOS restarts the program only when the PLC requests it; the analysis follows the configured request.";
     LevelLimitOnUndecidedWay = "E409", Warning, "A call that would need more than the control's program levels, on a way that depends on conditions the program does not determine: the control stops with alarm 14012 if it takes that way.";
     FlowNotFollowed = "E408", Information, "A jump whose target is not known statically, or a control structure whose nesting is broken: from there on the program is read in program order and its values are uncertain.";
+    CycleReferencePlane = "E420", Error, "A drilling cycle whose retraction plane and final depth lie on the same side of the reference plane, or whose depth relative to a reference plane equal to the retraction plane cannot be placed (alarm 61101): the cycle makes no motion.";
+    PatternWithoutModalCall = "E421", Warning, "A hole pattern (HOLES1, HOLES2) called while no drilling cycle is called modally (alarm 62100): the control stops (M0) and, after NC start, approaches the positions without drilling.";
+    PatternWithoutHoles = "E422", Error, "A hole pattern with the number of holes 0 (alarm 61103): the cycle is aborted without motion.";
+    CircleOfHolesTooLong = "E423", Error, "HOLES2 whose angle between holes times the number of gaps reaches 360 degrees or more (alarm 61106): the cycle is aborted without motion.";
+    CycleDepthDisagrees = "E424", Information, "A drilling cycle given both the final depth DP and the relative depth DPR, which disagree: DPR wins.";
+    GridWithoutRowsOrColumns = "E425", Warning, "CYCLE801 with 0 rows or 0 columns (alarm 62105): the control stops (M0) and takes 1.";
     UnknownSubprogram = "W301", Warning, "A call of a subprogram that no file of the workspace defines and that is not a cycle of the control (reported only when the workspace index is complete, and not for a word S120 already reports as read as a call).";
     TooManyArguments = "W302", Warning, "A call that passes more arguments than the PROC header of the called subprogram declares.";
     MissingReferenceArgument = "W303", Warning, "A call that leaves out an argument the PROC header passes by reference (`VAR`): the subprogram has no variable to write to.";

@@ -18,6 +18,12 @@ use std::path::{Path, PathBuf};
 #[derive(Debug, Default, Clone)]
 struct PassExpectation {
     positions: Vec<(String, Option<(f64, usize)>)>,
+    /// `@CYCLE81`: the move is made by that cycle's built-in model; `@none`: by the block itself.
+    cycle: Option<String>,
+    /// `G0`, `G1`: the motion of the move.
+    motion: Option<String>,
+    /// `F100`: the feed of the move (`F?`: unknown).
+    feed: Option<Option<(f64, usize)>>,
     /// `COND`: the move lies on a way whose condition is not decided.
     conditional: bool,
     /// `ASSUMED X Y`: these axes rest on the assumed entry state (and no others).
@@ -27,6 +33,10 @@ struct PassExpectation {
 #[derive(Debug, Default)]
 struct LineExpectation {
     passes: Option<Vec<PassExpectation>>,
+    /// `last =>`: only the last of the block's moves is checked (against the one part).
+    last_only: bool,
+    /// From `; holes:` lines below the block: the holes its drilling cycles make, as a set.
+    holes: Option<Vec<PassExpectation>>,
     no_move: bool,
     codes: Vec<String>,
 }
@@ -59,6 +69,21 @@ fn parse_pass(text: &str) -> PassExpectation {
             pass.assumed.as_mut().unwrap().push(word.to_string());
             continue;
         }
+        if let Some(cycle) = word.strip_prefix('@') {
+            pass.cycle = Some(cycle.to_string());
+            continue;
+        }
+        if word.len() > 1
+            && word.starts_with('G')
+            && word[1..].bytes().all(|byte| byte.is_ascii_digit())
+        {
+            pass.motion = Some(word.to_string());
+            continue;
+        }
+        if let Some(feed) = word.strip_prefix('F') {
+            pass.feed = Some((feed != "?").then(|| written_number(feed)));
+            continue;
+        }
         let split = word
             .find(|c: char| !c.is_ascii_alphabetic())
             .unwrap_or(word.len());
@@ -82,6 +107,7 @@ fn parse_line_expectation(comment: &str) -> LineExpectation {
     };
     expectation.codes = codes_part.split_whitespace().map(str::to_string).collect();
     if let Some(position) = moves_part.find("=>") {
+        expectation.last_only = moves_part[..position].trim() == "last";
         let rest = moves_part[position + 2..].trim();
         if rest == "none" {
             expectation.no_move = true;
@@ -230,9 +256,11 @@ fn check_case(case: &Case) -> Vec<String> {
     for (path, key) in files {
         let file_text = std::fs::read_to_string(&path).expect("readable fixture");
         let name = path.file_name().unwrap().to_string_lossy().to_string();
-        for (line_index, (start, end)) in lines::line_ranges(&file_text).enumerate() {
-            let line = &file_text[start..end];
-            let expectation = match line.find(';') {
+        let all_lines: Vec<&str> = lines::line_ranges(&file_text)
+            .map(|(start, end)| &file_text[start..end])
+            .collect();
+        for (line_index, line) in all_lines.iter().copied().enumerate() {
+            let mut expectation = match line.find(';') {
                 Some(position)
                     if line[position..].contains("=>") || line[position..].contains("!!") =>
                 {
@@ -240,6 +268,9 @@ fn check_case(case: &Case) -> Vec<String> {
                 }
                 _ => LineExpectation::default(),
             };
+            if !line.trim().starts_with("; holes:") {
+                expectation.holes = holes_below(&all_lines, line_index);
+            }
             if key.is_none() {
                 let reported: Vec<String> = execution
                     .findings
@@ -270,9 +301,30 @@ fn check_case(case: &Case) -> Vec<String> {
                     of_line.len()
                 ));
             }
+            if let Some(holes) = &expectation.holes {
+                failures.extend(compare_holes(
+                    &format!("{name}:{}", line_index + 1),
+                    holes,
+                    &of_line,
+                ));
+            }
             let Some(passes) = &expectation.passes else {
                 continue;
             };
+            if expectation.last_only {
+                match (passes.as_slice(), of_line.last()) {
+                    ([expected], Some(last)) => failures.extend(compare_pass(
+                        &format!("{name}:{} last move", line_index + 1),
+                        expected,
+                        last,
+                    )),
+                    _ => failures.push(format!(
+                        "{name}:{}: `last =>` needs one part and a move",
+                        line_index + 1
+                    )),
+                }
+                continue;
+            }
             if passes.len() != of_line.len() {
                 failures.push(format!(
                     "{name}:{}: expected {} moves, found {}: {:?}",
@@ -290,10 +342,18 @@ fn check_case(case: &Case) -> Vec<String> {
                 let at = format!("{name}:{} pass {}", line_index + 1, number + 1);
                 failures.extend(compare_pass(&at, expected, executed));
             }
-            // A block that runs more than once numbers its moves 1, 2, 3, ...; once, not at all.
+            // A block that runs more than once numbers its moves 1, 2, 3, ...; once, not at all (a
+            // block that triggers a cycle makes several moves in one execution, with one number).
             let numbers: Vec<u32> = of_line.iter().map(|executed| executed.pass).collect();
-            let numbered = if of_line.len() > 1 {
-                numbers.first() == Some(&1) && numbers.windows(2).all(|pair| pair[0] < pair[1])
+            let once = numbers.iter().all(|number| *number == 0);
+            let by_cycles = of_line
+                .iter()
+                .any(|executed| executed.movement.cycle.is_some());
+            let numbered = if of_line.len() > 1 && !(once && by_cycles) {
+                numbers.first() == Some(&1)
+                    && numbers
+                        .windows(2)
+                        .all(|pair| pair[0] < pair[1] || (by_cycles && pair[0] == pair[1]))
             } else {
                 true
             };
@@ -309,9 +369,100 @@ fn check_case(case: &Case) -> Vec<String> {
     failures
 }
 
+/// The `; holes: X30 Y10, X45 Y10` lines right below line `index` (comment lines of their own),
+/// joined: the holes the block's drilling cycles make.
+fn holes_below(lines: &[&str], index: usize) -> Option<Vec<PassExpectation>> {
+    let mut holes: Option<Vec<PassExpectation>> = None;
+    for line in lines.iter().skip(index + 1) {
+        let Some(list) = line.trim().strip_prefix("; holes:") else {
+            break;
+        };
+        holes.get_or_insert_with(Vec::new).extend(
+            list.split(',')
+                .filter(|hole| !hole.trim().is_empty())
+                .map(parse_pass),
+        );
+    }
+    holes
+}
+
+/// Compares the holes of a block's moves with the expected set: a hole is where a run of moves of
+/// one drilling cycle (`CYCLE8…`) starts, its first move's end in the plane.
+fn compare_holes(at: &str, expected: &[PassExpectation], moves: &[&ExecutedMove]) -> Vec<String> {
+    let mut actual: Vec<&ExecutedMove> = Vec::new();
+    let mut previous: Option<&str> = None;
+    for executed in moves {
+        let cycle = executed
+            .movement
+            .cycle
+            .as_deref()
+            .filter(|name| name.starts_with("CYCLE8") && *name != "CYCLE801");
+        if cycle.is_some() && previous.is_none() {
+            actual.push(executed);
+        }
+        previous = cycle;
+    }
+    if actual.len() != expected.len() {
+        return vec![format!(
+            "{at}: expected {} holes, found {}: {:?}",
+            expected.len(),
+            actual.len(),
+            actual
+                .iter()
+                .map(|executed| &executed.movement.end)
+                .collect::<Vec<_>>()
+        )];
+    }
+    let mut unmatched: Vec<&ExecutedMove> = actual;
+    let mut failures = Vec::new();
+    for hole in expected {
+        match unmatched
+            .iter()
+            .position(|executed| compare_pass(at, hole, executed).is_empty())
+        {
+            Some(found) => {
+                unmatched.remove(found);
+            }
+            None => failures.push(format!(
+                "{at}: no hole at {:?}; left: {:?}",
+                hole.positions,
+                unmatched
+                    .iter()
+                    .map(|executed| &executed.movement.end)
+                    .collect::<Vec<_>>()
+            )),
+        }
+    }
+    failures
+}
+
 fn compare_pass(at: &str, expected: &PassExpectation, executed: &ExecutedMove) -> Vec<String> {
     let mut failures = Vec::new();
     let movement = &executed.movement;
+    if let Some(cycle) = &expected.cycle {
+        let actual = movement.cycle.as_deref().unwrap_or("none");
+        if actual != cycle {
+            failures.push(format!("{at}: expected cycle {cycle}, got {actual}"));
+        }
+    }
+    if let Some(motion) = &expected.motion {
+        if movement.motion.as_ref() != motion {
+            failures.push(format!("{at}: expected {motion}, got {}", movement.motion));
+        }
+    }
+    if let Some(feed) = &expected.feed {
+        let agrees = match (feed, movement.feed) {
+            (Some((value, decimals)), Some(actual)) => matches_written(actual, *value, *decimals),
+            (None, None) => true,
+            _ => false,
+        };
+        if !agrees {
+            failures.push(format!(
+                "{at}: expected feed {feed:?}, got {:?}",
+                movement.feed
+            ));
+        }
+    }
     for (axis, value) in &expected.positions {
         let actual = movement
             .end

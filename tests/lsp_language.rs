@@ -781,3 +781,68 @@ async fn the_findings_of_running_a_program_are_published_as_check_reports_them()
     );
     client.shutdown().await;
 }
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn the_findings_of_the_cycle_models_are_published_as_check_reports_them() {
+    // T128 (reference §19.3): HOLES1 without a modal call is E421, HOLES2 with NUM = 0 is E422; a
+    // CYCLE81 with planes on the wrong side is E420. The server and `check` report them alike.
+    let folder = temp_folder("cycle-findings");
+    let main_text = "N10 G17 G90 G0 X0 Y0 Z50\nN20 HOLES1(20, 10, 0, 10, 15, 4)\nN30 HOLES2(0, 0, 30, 0, 90, 0)\nN40 CYCLE81(-10, 0, 1, -5)\nM30\n";
+    std::fs::write(folder.join("MAIN.MPF"), main_text).unwrap();
+    let mut texts = HashMap::new();
+    texts.insert("MAIN.MPF".to_string(), main_text.to_string());
+    let workspace = Workspace {
+        folder,
+        texts,
+        marks: HashMap::new(),
+    };
+    let (mut client, _) = start(&workspace).await;
+    let main = workspace.uri("MAIN.MPF");
+    let published = client
+        .notification("textDocument/publishDiagnostics", |params| {
+            params["uri"] == main.as_str()
+                && codes(&params["diagnostics"]).contains(&"E422".to_string())
+        })
+        .await;
+    let mut from_server: Vec<(u64, String, String)> = published["diagnostics"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .filter(|diagnostic| diagnostic["code"].as_str().unwrap().starts_with('E'))
+        .map(|diagnostic| {
+            (
+                diagnostic["range"]["start"]["line"].as_u64().unwrap(),
+                diagnostic["code"].as_str().unwrap().to_string(),
+                diagnostic["message"].as_str().unwrap().to_string(),
+            )
+        })
+        .collect();
+    from_server.sort();
+    let output = std::process::Command::new(env!("CARGO_BIN_EXE_sinumerik-lsp"))
+        .args(["check", "--format", "json"])
+        .arg(workspace.folder.join("MAIN.MPF"))
+        .output()
+        .unwrap();
+    let checked: Value = serde_json::from_slice(&output.stdout).unwrap();
+    let mut from_check: Vec<(u64, String, String)> = checked
+        .as_array()
+        .unwrap()
+        .iter()
+        .filter(|item| item["code"].as_str().unwrap().starts_with('E'))
+        .map(|item| {
+            (
+                item["line"].as_u64().unwrap() - 1,
+                item["code"].as_str().unwrap().to_string(),
+                item["message"].as_str().unwrap().to_string(),
+            )
+        })
+        .collect();
+    from_check.sort();
+    let found: Vec<(u64, &str)> = from_check
+        .iter()
+        .map(|(line, code, _)| (*line, code.as_str()))
+        .collect();
+    assert_eq!(found, vec![(1, "E421"), (2, "E422"), (3, "E420")]);
+    assert_eq!(from_server, from_check);
+    client.shutdown().await;
+}

@@ -51,6 +51,9 @@ pub struct Move {
     pub plane: Option<(&'static str, &'static str)>,
     /// Whether the values of transverse axes in `start`, `end` and `arc` are diameters.
     pub transverse_as_diameter: bool,
+    /// The standard cycle whose built-in model made the move (`"CYCLE81"`, `"HOLES1"`), `None` for
+    /// a move the program's own block makes.
+    pub cycle: Option<Arc<str>>,
 }
 
 /// The circle a G2/G3 block follows.
@@ -1783,6 +1786,7 @@ impl<'a> Engine<'a> {
             arc,
             transverse_as_diameter: shows_diameter == Some(true),
             plane: self.state.plane_axis_names(),
+            cycle: None,
         }
     }
 }

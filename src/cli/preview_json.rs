@@ -92,6 +92,10 @@ pub(crate) fn write_executed_move(
     if executed.conditional {
         out.write_all(b",\"conditional\":true")?;
     }
+    if let Some(cycle) = &executed.movement.cycle {
+        out.write_all(b",\"cycle\":")?;
+        serde_json::to_writer(&mut *out, cycle.as_ref())?;
+    }
     if !executed.assumed.is_empty() {
         out.write_all(b",\"assumed\":[")?;
         for (index, name) in executed.assumed.iter().enumerate() {

@@ -195,6 +195,8 @@ struct RawConfig {
     offsets: BTreeMap<String, BTreeMap<String, f64>>,
     #[serde(default)]
     execution: super::execution::RawExecution,
+    #[serde(default)]
+    cycles: super::cycles::RawCycles,
 }
 
 /// The `[machine]` table. Numbers are read as `i64` and range-checked here, which gives a clearer
@@ -489,6 +491,10 @@ impl RawConfig {
             .execution
             .convert()
             .map_err(|(name, message)| invalid(&[key("execution"), key(name)], message))?;
+        config.cycles = self
+            .cycles
+            .convert()
+            .map_err(|(name, message)| invalid(&[key("cycles"), key(name)], message))?;
         Ok(config)
     }
 }

@@ -142,6 +142,11 @@ impl<'a, 's> Interpreter<'a, 's> {
                 line: pc,
                 span: Span::default(),
             }),
+            // A standard drilling cycle without a program of its own runs as its built-in model.
+            None if super::cycles::is_drilling(&modal.name) && !engine.is_macro(&modal.name) => {
+                self.run_modal_cycle(control, engine, pc, &line, block, &modal);
+                None
+            }
             None => {
                 // A program the analysis cannot see runs after the block: anything may change.
                 engine.forget_after_unknown_call();
@@ -374,7 +379,7 @@ fn callee_name(line: &str, name: Span, kind: CallKind) -> Option<String> {
     (!text.is_empty()).then(|| text.to_ascii_uppercase())
 }
 
-fn evaluate_arguments(
+pub(super) fn evaluate_arguments(
     engine: &Engine,
     block: &Block,
     line: &str,

@@ -4,6 +4,7 @@
 
 use crate::analysis::engine::{Engine, EngineSnapshot};
 use crate::analysis::execution::assumptions::reset_assumptions;
+use crate::analysis::execution::cycles::CycleState;
 use crate::analysis::execution::entry::RunSetup;
 use crate::analysis::execution::first_pass::FirstPasses;
 use crate::analysis::execution::library_macros::LibraryMacros;
@@ -57,7 +58,7 @@ pub struct Interpreter<'a, 's> {
     /// block runs once (a program without any flow).
     pass_totals: Option<Vec<Vec<u32>>>,
     /// The run only counts passes: no move is built.
-    counting: bool,
+    pub(super) counting: bool,
     pub(super) findings: Vec<LineDiagnostic>,
     pub(super) reported: HashSet<(usize, Code)>,
     pub(super) executed: u64,
@@ -81,6 +82,8 @@ pub struct Interpreter<'a, 's> {
     pub(super) setup: RunSetup,
     /// The first passes of the analysed program's lines, when they are recorded.
     pub(super) first_passes: Option<FirstPasses>,
+    /// The built-in models of the standard cycles (`cycles/`).
+    pub(super) cycles: CycleState,
 }
 
 impl<'a, 's> Interpreter<'a, 's> {
@@ -115,6 +118,7 @@ impl<'a, 's> Interpreter<'a, 's> {
             library_macros: None,
             setup: RunSetup::default(),
             first_passes: None,
+            cycles: CycleState::default(),
         }
     }
 
@@ -386,7 +390,11 @@ impl<'a, 's> Interpreter<'a, 's> {
             self.control_statements(control, engine, &unit, pc, &block, true)
         } else {
             let call = self.prepare_call(control, engine, &unit, pc, &block);
-            if call.is_some() {
+            let builtin = match call {
+                None => self.builtin_call(control, engine, &block, line),
+                Some(_) => None,
+            };
+            if call.is_some() || builtin.is_some() {
                 engine.follow_call_of_next_block();
             }
             let table = table_mark(&block, line);
@@ -402,6 +410,9 @@ impl<'a, 's> Interpreter<'a, 's> {
             }
             if let Some(mark) = table {
                 self.table_end(control, engine, mark);
+            }
+            if let Some(builtin) = builtin {
+                self.run_builtin(control, engine, pc, line, &block, builtin);
             }
             let modal = self.modal_call_after(control, engine, &block, pc, moved);
             let callee = call.as_ref().or(modal.as_ref()).map(|call| call.unit());
@@ -421,7 +432,7 @@ impl<'a, 's> Interpreter<'a, 's> {
         }
     }
 
-    fn record_move(
+    pub(super) fn record_move(
         &mut self,
         control: &Control,
         engine: &Engine<'a>,
@@ -430,7 +441,8 @@ impl<'a, 's> Interpreter<'a, 's> {
         line: &str,
         block: &Block,
     ) {
-        let movement = engine.describe_last_move(pc, line, block);
+        let mut movement = engine.describe_last_move(pc, line, block);
+        movement.cycle = self.cycles.current.clone();
         let assumed = if control.assumed_axes == 0 {
             Vec::new()
         } else {

@@ -13,6 +13,7 @@
 mod assumptions;
 mod calls;
 mod control;
+mod cycles;
 pub mod entry;
 pub mod first_pass;
 mod interpreter;
