@@ -253,6 +253,9 @@ codes! {
     ArithmeticError = "A225", Error, "An arithmetic error other than a division by zero in an expression whose values are known: a result beyond the range of a double, or a function argument outside its domain (`SQRT(-1)`, `ACOS(2)`, `LN(0)`) (alarm 14051).";
     FunctionArgumentCount = "A226", Error, "A predefined function the checker computes, called with a wrong number of arguments (`POT(2,3)`; alarm 14020).";
     IndexOutOfRange = "A227", Error, "A known index outside the dimensions of a defined array, or a negative R parameter number (alarm 17020).";
+    AngleDirectionMismatch = "A240", Warning, "A straight line defined by `ANG` and one end coordinate whose angle points away from that coordinate: the control rejects the block (reference §14.6, T109; the alarm is not documented).";
+    AngleNoSolution = "A241", Error, "A contour definition by angles that has no solution: `ANG` parallel to the only given axis, or two lines of a two-block definition that are parallel (reference §14.6).";
+    RoundingAndChamfer = "A242", Information, "A block that programs both a rounding and a chamfer (`RND` with `CHR` or `CHF`): only the rounding is inserted (reference §14.1).";
     EndlessLoop = "E401", Warning, "A loop or jump cycle that the program never leaves: its state repeats unchanged, so the control would run it forever.";
     ExecutionBudgetUsed = "E402", Information, "The configured budget of executed blocks is used up: the rest of the program is read in program order and its values are uncertain.";
     LoopPassLimit = "E403", Information, "A loop that ran more passes than the configured limit: what its body changes is unknown after it.";
@@ -262,6 +265,10 @@ codes! {
     RestartByPlc = "E407", Information, "GOTOS restarts the program only when the PLC requests it; the analysis follows the configured request.";
     LevelLimitOnUndecidedWay = "E409", Warning, "A call that would need more than the control's program levels, on a way that depends on conditions the program does not determine: the control stops with alarm 14012 if it takes that way.";
     FlowNotFollowed = "E408", Information, "A jump whose target is not known statically, or a control structure whose nesting is broken: from there on the program is read in program order and its values are uncertain.";
+    CornerElementReduced = "E420", Warning, "A rounding or chamfer that does not fit the elements of its corner: it is reduced as far as it fits (the control's exact rule is not documented, reference §14.4).";
+    CornerReversal = "E421", Error, "A rounding or chamfer at a corner where the path reverses (180°): no element can be inserted (reference §14.3).";
+    ChamferAtCircle = "E422", Information, "A chamfer at a circle: the chamfer points lie on the elements at the chord distance from the corner, as the reference recommends; the control's construction is not documented (reference §14.3).";
+    CornerNotInserted = "E423", Information, "A rounding or chamfer the control does not insert: more blocks without motion in the plane follow than MD20200 allows, the plane changes, or the program ends before the next element (reference §14.4).";
     UnknownSubprogram = "W301", Warning, "A call of a subprogram that no file of the workspace defines and that is not a cycle of the control (reported only when the workspace index is complete, and not for a word S120 already reports as read as a call).";
     TooManyArguments = "W302", Warning, "A call that passes more arguments than the PROC header of the called subprogram declares.";
     MissingReferenceArgument = "W303", Warning, "A call that leaves out an argument the PROC header passes by reference (`VAR`): the subprogram has no variable to write to.";

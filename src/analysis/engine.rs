@@ -17,10 +17,12 @@ use std::sync::Arc;
 mod assignments;
 mod checks;
 mod circles;
+mod contours;
 mod frame_variables;
 mod indirect_axes;
 mod join;
 mod macros;
+pub use contours::{ContourRequest, CornerElement, OpenAngle};
 pub(crate) use macros::macro_definition;
 
 /// A block that moves axes.
@@ -51,6 +53,11 @@ pub struct Move {
     pub plane: Option<(&'static str, &'static str)>,
     /// Whether the values of transverse axes in `start`, `end` and `arc` are diameters.
     pub transverse_as_diameter: bool,
+    /// What the block asks of the corner at its end (RND, CHF, CHR, RNDM, FRC, FRCM; reference §14),
+    /// for the corner stage of the simulation; `None` for most moves.
+    pub contour: Option<Box<ContourRequest>>,
+    /// For a chamfer or rounding the corner stage inserted: `"RND"`, `"CHF"` or `"CHR"`.
+    pub inserted: Option<&'static str>,
 }
 
 /// The circle a G2/G3 block follows.
@@ -121,6 +128,8 @@ pub struct Engine<'a> {
     start_positions: Vec<Option<f64>>,
     /// The circle of the block last applied, for its move.
     last_arc: Option<crate::analysis::circle::Circle>,
+    /// What the block last applied asks of its corner (reference §14), for its move.
+    last_contour: Option<Box<ContourRequest>>,
     /// The geometry slot (X, Y, Z) of each configured axis, for frames.
     slots: crate::analysis::machine::AxisSlots,
     /// Per axis, how the current block wrote it: 0 not, 1 in workpiece coordinates, 2 as a machine
@@ -240,6 +249,7 @@ impl<'a> Engine<'a> {
                 .collect(),
             start_positions: Vec::with_capacity(config.axes.len()),
             last_arc: None,
+            last_contour: None,
             slots: crate::analysis::machine::AxisSlots::new(config),
             written: vec![0; config.axes.len()],
             stale_offset_data: None,
@@ -321,6 +331,7 @@ impl<'a> Engine<'a> {
             axis_names,
             start_positions,
             last_arc,
+            last_contour,
             slots,
             written,
             stale_offset_data: _,
@@ -340,6 +351,7 @@ impl<'a> Engine<'a> {
             axis_names,
             start_positions,
             last_arc,
+            last_contour,
             slots,
             written,
             stale_offset_data: snapshot.stale_offset_data,
@@ -402,6 +414,9 @@ impl<'a> Engine<'a> {
         }
         self.state.frame = None;
         self.tangent = None;
+        // RNDM and FRCM are kept: a program the analysis cannot see is assumed not to change them
+        // (a tool change cycle does not).
+        self.state.open_angle = None;
         // The callee may select another settable offset; it is read again when the program
         // selects one.
         self.state.offset.iter_mut().for_each(|value| *value = None);
@@ -532,6 +547,7 @@ impl<'a> Engine<'a> {
 
     fn step_block(&mut self, line: &str, block: &Block, diagnostics: &mut Vec<Diagnostic>) -> bool {
         self.last_arc = None;
+        self.last_contour = None;
         let call_followed = std::mem::take(&mut self.call_followed);
         if block.is_header {
             return false;
@@ -605,6 +621,7 @@ impl<'a> Engine<'a> {
         // A call or a kinematic change may also write the settable frames' data (measuring cycles do).
         let mut frame_data_changed = forget_for_frames;
         let mut circle_words = CircleWords::default();
+        let mut contour = contours::ContourWords::default();
         for statement in statements {
             match statement {
                 Statement::Address(word) => match word.kind {
@@ -687,6 +704,9 @@ impl<'a> Engine<'a> {
                             self.word_value(line, block, word, diagnostics);
                         moved |= functions.frame_or_pole.is_none() && !functions.dwell;
                     }
+                    AddressKind::Named(NamedAddress::Other) => {
+                        self.read_contour_address(line, block, word, &mut contour, diagnostics);
+                    }
                     AddressKind::MFunction => {
                         // A tool change (M6) may run a machine-specific cycle that moves axes.
                         let value = self.word_value(line, block, word, diagnostics);
@@ -702,7 +722,24 @@ impl<'a> Engine<'a> {
                     value,
                     ..
                 } => {
-                    self.apply_assignment(line, block, target, *target_span, *value, diagnostics);
+                    if !self.read_contour_assignment(
+                        line,
+                        block,
+                        target,
+                        *target_span,
+                        *value,
+                        &mut contour,
+                        diagnostics,
+                    ) {
+                        self.apply_assignment(
+                            line,
+                            block,
+                            target,
+                            *target_span,
+                            *value,
+                            diagnostics,
+                        );
+                    }
                 }
                 Statement::Definition {
                     declarators,
@@ -791,6 +828,14 @@ impl<'a> Engine<'a> {
                 None => self.state.feed = None,
             }
         }
+        // ANG changes the programmed position (reference §14.6); a rounding or chamfer only the path.
+        let mut angle_open = false;
+        if contour.any() || self.state.open_angle.is_some() {
+            let (angle_moves, opened) =
+                self.apply_contour_angle(&contour, &mut start_positions, diagnostics);
+            moved |= angle_moves;
+            angle_open = opened;
+        }
         let motion = self.state.groups[1]
             .map(GCode::name)
             .unwrap_or(Cow::Borrowed(""));
@@ -868,6 +913,9 @@ impl<'a> Engine<'a> {
         }
         crate::analysis::machine::update_after_block(&mut self.state, &self.slots, &self.written);
         let result = moves_axes;
+        if moves_axes {
+            self.last_contour = self.contour_request(&contour, angle_open, diagnostics);
+        }
         self.last_arc = arc;
         self.start_positions = start_positions;
         if forget_after {
@@ -1776,6 +1824,8 @@ impl<'a> Engine<'a> {
             arc,
             transverse_as_diameter: shows_diameter == Some(true),
             plane: self.state.plane_axis_names(),
+            contour: self.last_contour.clone(),
+            inserted: None,
         }
     }
 }

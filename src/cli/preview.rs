@@ -204,7 +204,7 @@ fn write_csv_header(out: &mut dyn Write, config: &MachineConfig) -> io::Result<(
     for axis in &config.axes {
         write!(out, ",{}", axis.name)?;
     }
-    writeln!(out, ",feed,uncertain,pass,file")
+    writeln!(out, ",feed,uncertain,pass,file,inserted")
 }
 
 fn write_csv_row(
@@ -243,8 +243,9 @@ fn write_csv_row(
     let file = executed.path.as_deref().unwrap_or("");
     // A path with a comma or quote is quoted as CSV quotes fields.
     if file.contains([',', '"', '\n']) {
-        writeln!(out, ",{pass},\"{}\"", file.replace('"', "\"\""))
+        write!(out, ",{pass},\"{}\"", file.replace('"', "\"\""))?;
     } else {
-        writeln!(out, ",{pass},{file}")
+        write!(out, ",{pass},{file}")?;
     }
+    writeln!(out, ",{}", movement.inserted.unwrap_or(""))
 }

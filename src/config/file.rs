@@ -195,6 +195,8 @@ struct RawConfig {
     offsets: BTreeMap<String, BTreeMap<String, f64>>,
     #[serde(default)]
     execution: super::execution::RawExecution,
+    #[serde(default)]
+    contours: super::contours::RawContours,
 }
 
 /// The `[machine]` table. Numbers are read as `i64` and range-checked here, which gives a clearer
@@ -489,6 +491,10 @@ impl RawConfig {
             .execution
             .convert()
             .map_err(|(name, message)| invalid(&[key("execution"), key(name)], message))?;
+        config.contours = self
+            .contours
+            .convert()
+            .map_err(|(name, message)| invalid(&[key("contours"), key(name)], message))?;
         Ok(config)
     }
 }

@@ -1,6 +1,7 @@
 //! The machine configuration: what the control's machine data would tell about axes, units, reset state
 //! and tolerances. Plain data with defaults; reading `sinumerik.toml` lives in `file.rs`.
 
+pub mod contours;
 pub mod execution;
 mod file;
 
@@ -101,6 +102,8 @@ pub struct MachineConfig {
     pub frame_fine_trans: bool,
     /// How the interpreter runs programs (`[execution]`).
     pub execution: execution::ExecutionOptions,
+    /// How chamfers and roundings are inserted (`[contours]`).
+    pub contours: contours::ContourOptions,
 }
 
 impl Default for MachineConfig {
@@ -135,6 +138,7 @@ impl MachineConfig {
             frame_offset_incr_prog: true,
             frame_fine_trans: false,
             execution: Default::default(),
+            contours: Default::default(),
         }
     }
 

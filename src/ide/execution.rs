@@ -82,7 +82,10 @@ pub fn execute_document(
                     config,
                     macros.names(),
                 );
-                if !unit.flow.has_flow {
+                // Roundings and chamfers change the path, which only the run's corner stage makes.
+                if !unit.flow.has_flow
+                    && !crate::analysis::simulation::mentions_contour_words(&text, config)
+                {
                     return DocumentExecution::InOrder;
                 }
             }
@@ -102,7 +105,7 @@ pub fn execute_document(
         Some(_) => run.execution.assumed.clone(),
         None => entry_assumptions(&text, config, kind, options),
     };
-    let (by_line, order) = index_by_line(&run.moves, source.line_count());
+    let (by_line, order) = index_by_line(&run.path_moves, source.line_count());
     DocumentExecution::Executed {
         run: Arc::new(run),
         assumed,
@@ -143,7 +146,7 @@ impl DocumentExecution {
         let DocumentExecution::Executed { run, order, .. } = self else {
             return None;
         };
-        let moves = &run.moves;
+        let moves = &run.path_moves;
         let first =
             order.partition_point(|&index| moves[index as usize].outer_line() < lines.start);
         let last = order.partition_point(|&index| moves[index as usize].outer_line() < lines.end);
@@ -168,7 +171,7 @@ impl DocumentExecution {
                 order,
                 ..
             } => {
-                let moves = &run.moves;
+                let moves = &run.path_moves;
                 let Some(range) = by_line.get(line) else {
                     return Vec::new();
                 };

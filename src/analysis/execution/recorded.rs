@@ -39,7 +39,11 @@ pub enum RunStart {
 /// A run with its moves and the record to run it again.
 pub struct RecordedRun {
     pub execution: Execution,
+    /// The moves as the blocks program them (what a resumed run continues from).
     pub moves: Arc<Vec<ExecutedMove>>,
+    /// The path the tool takes: `moves` with the roundings and chamfers the corner stage inserts
+    /// (the same vector when there are none); `execution.findings` holds the stage's findings.
+    pub path_moves: Arc<Vec<ExecutedMove>>,
     pub start: RunStart,
     /// The pass number of every move, also for blocks that ran once (shown as 0 in `moves`).
     raw_passes: Arc<Vec<u32>>,
@@ -71,6 +75,31 @@ impl std::fmt::Debug for RecordedRun {
             .field("start", &self.start)
             .field("checkpoints", &self.checkpoints.len())
             .finish()
+    }
+}
+
+impl RecordedRun {
+    /// Runs the corner stage over the moves (reference §14): `path_moves` and the stage's findings.
+    fn with_corners(mut self, config: &MachineConfig) -> RecordedRun {
+        if !self
+            .moves
+            .iter()
+            .any(|executed| executed.movement.contour.is_some())
+        {
+            return self;
+        }
+        let Some(main) = self.units.first().cloned() else {
+            return self;
+        };
+        let mut stage = crate::analysis::simulation::CornerStage::new(config, main.text());
+        let mut path = Vec::with_capacity(self.moves.len() + 16);
+        for executed in self.moves.iter() {
+            stage.push(executed.clone(), &mut |movement| path.push(movement));
+        }
+        let findings = stage.finish(&mut |movement| path.push(movement));
+        super::add_stage_findings(&mut self.execution.findings, findings);
+        self.path_moves = Arc::new(path);
+        self
     }
 }
 
@@ -121,7 +150,9 @@ pub fn run_recorded(
     let start = interpreter.start(main, kind);
     let end = interpreter.run_from(start);
     let parts = Parts::take(interpreter);
-    parts.into_run(moves, end, RunStart::Fresh, &context, macros, None)
+    parts
+        .into_run(moves, end, RunStart::Fresh, &context, macros, None)
+        .with_corners(config)
 }
 
 /// The run of `text` resumed from `earlier`, when the edit allows it (see the module's comment);
@@ -189,6 +220,7 @@ fn run_again(
         return Some(RecordedRun {
             execution: earlier.execution.clone(),
             moves: Arc::clone(&earlier.moves),
+            path_moves: Arc::clone(&earlier.path_moves),
             start: RunStart::Unchanged,
             raw_passes: Arc::clone(&earlier.raw_passes),
             findings_in_order: Arc::clone(&earlier.findings_in_order),
@@ -312,9 +344,17 @@ fn run_again(
                 .map(|movement| movement.pass),
         );
         let macros = Arc::clone(&earlier.macros);
-        return Some(parts.into_run(moves, run_end, start, context, macros, Some(raw_passes)));
+        return Some(
+            parts
+                .into_run(moves, run_end, start, context, macros, Some(raw_passes))
+                .with_corners(config),
+        );
     };
-    Some(parts.rejoin(earlier, index, moves, raw_passes, start))
+    Some(
+        parts
+            .rejoin(earlier, index, moves, raw_passes, start)
+            .with_corners(config),
+    )
 }
 
 /// The lines where `new` differs from `old` (of the same length), when every such line plays the
@@ -436,9 +476,11 @@ impl<'a> Parts<'a> {
             &self.execution.pass_totals,
             &self.units,
         );
+        let moves = Arc::new(moves);
         RecordedRun {
             execution: self.execution,
-            moves: Arc::new(moves),
+            path_moves: Arc::clone(&moves),
+            moves,
             start,
             raw_passes: Arc::new(raw_passes),
             findings_in_order: Arc::new(self.findings_in_order),
@@ -528,9 +570,11 @@ impl<'a> Parts<'a> {
             &self.execution.pass_totals,
             &self.units,
         );
+        let moves = Arc::new(moves);
         RecordedRun {
             execution: self.execution,
-            moves: Arc::new(moves),
+            path_moves: Arc::clone(&moves),
+            moves,
             start,
             raw_passes: Arc::new(raw_passes),
             findings_in_order: Arc::new(findings),
