@@ -167,7 +167,7 @@ pub fn execute_with(
     let mut stage = crate::analysis::simulation::CornerStage::new(config, text);
     let mut execution = {
         let mut staged = |movement: ExecutedMove| stage.push(movement, visit);
-        execute_unstaged(text, config, kind, library, options, setup, &mut staged)
+        execute_programmed(text, config, kind, library, options, setup, &mut staged)
     };
     let findings = stage.finish(visit);
     add_stage_findings(&mut execution.findings, findings);
@@ -183,8 +183,9 @@ pub(crate) fn add_stage_findings(findings: &mut Vec<LineDiagnostic>, stage: Vec<
     findings.sort_by_key(|item| (item.line, item.diagnostic.span.start()));
 }
 
-/// The run of [`execute_with`] without the corner stage: the moves of the blocks as programmed.
-fn execute_unstaged(
+/// The run of [`execute_with`] without the corner stage: the moves of the blocks as they program
+/// them, with sharp corners.
+pub fn execute_programmed(
     text: &str,
     config: &MachineConfig,
     kind: ProgramKind,

@@ -135,6 +135,7 @@ impl<'c> CornerStage<'c> {
         if request.angle_open {
             if let Some(corner) = point(&next.movement.start, names) {
                 set_point(&mut held.movement.end, names, corner);
+                self.in_axis_order(&mut held.movement.end);
                 held.movement
                     .uncertain
                     .retain(|name| !is_plane_axis(name, names));
@@ -318,6 +319,16 @@ impl<'c> CornerStage<'c> {
                     .axis(name)
                     .is_some_and(|axis| axis.kind == crate::config::AxisKind::Transverse)
             })
+    }
+
+    /// Puts axis values in the order of the configuration, as the engine writes them.
+    fn in_axis_order(&self, values: &mut [(Arc<str>, f64)]) {
+        let axes = &self.config.axes;
+        values.sort_by_key(|(name, _)| {
+            axes.iter()
+                .position(|axis| axis.name.as_str() == name.as_ref())
+                .unwrap_or(usize::MAX)
+        });
     }
 
     fn not_inserted(&mut self, held: &ExecutedMove, why: &str) {
