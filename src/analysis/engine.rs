@@ -716,30 +716,28 @@ impl<'a> Engine<'a> {
                     }
                     _ => {}
                 },
+                // `ANG=30` (and a configured name the parser does not know) reads as an assignment.
+                Statement::Assignment {
+                    target,
+                    target_span,
+                    value,
+                    ..
+                } if self.read_contour_assignment(
+                    line,
+                    block,
+                    target,
+                    *target_span,
+                    *value,
+                    &mut contour,
+                    diagnostics,
+                ) => {}
                 Statement::Assignment {
                     target,
                     target_span,
                     value,
                     ..
                 } => {
-                    if !self.read_contour_assignment(
-                        line,
-                        block,
-                        target,
-                        *target_span,
-                        *value,
-                        &mut contour,
-                        diagnostics,
-                    ) {
-                        self.apply_assignment(
-                            line,
-                            block,
-                            target,
-                            *target_span,
-                            *value,
-                            diagnostics,
-                        );
-                    }
+                    self.apply_assignment(line, block, target, *target_span, *value, diagnostics);
                 }
                 Statement::Definition {
                     declarators,

@@ -407,6 +407,35 @@ mod tests {
     }
 
     #[test]
+    fn a_program_with_roundings_runs_through_the_corner_stage() {
+        // T106 and a rounding at a reversal: the editor gets the path with the inserted element and
+        // the stage's finding, as `check` does.
+        let text = "G17 G90 G1 X0 Y0 F100\nX50 Y0 RND=5\nY50 RND=2\nY0\nM30\n";
+        let execution = run(text, ProgramKind::Main);
+        let of_corner: Vec<Option<&str>> = execution
+            .moves_of_line(1)
+            .iter()
+            .map(|executed| executed.movement.inserted)
+            .collect();
+        assert_eq!(of_corner, vec![None, Some("RND")]);
+        assert_eq!(execution.moves_of_line(1)[0].movement.end[0].1, 45.0);
+        let codes: Vec<(usize, &str)> = execution
+            .findings()
+            .iter()
+            .map(|finding| (finding.line, finding.diagnostic.code.as_str()))
+            .collect();
+        assert_eq!(codes, vec![(2, "E421")]);
+        let checked = crate::analysis::execution::execution_findings(
+            text,
+            &MachineConfig::mill(),
+            ProgramKind::Main,
+            &NoLibrary,
+            &ExecutionOptions::default(),
+        );
+        assert_eq!(checked.as_slice(), execution.findings());
+    }
+
+    #[test]
     fn moves_are_found_by_line_and_range() {
         let text = "G90 G0 X0\nFOR R1=1 TO 3\nG0 X=R1\nENDFOR\nY5\nM30\n";
         let execution = run(text, ProgramKind::Main);

@@ -188,7 +188,7 @@ impl Engine<'_> {
             return None;
         }
         let rounding = contour.rounding.map(|(value, _)| value).or(match modal {
-            Some(radius) if radius == 0.0 => None,
+            Some(0.0) => None,
             other => Some(other),
         });
         if let (Some((_, rounding_span)), Some((_, _, chamfer_span))) =
@@ -202,10 +202,10 @@ impl Engine<'_> {
         }
         let element = match (rounding, contour.chamfer) {
             // `RND=0` inserts nothing; RNDM, if active, rounds the corner instead (reference §14.1).
-            (Some(Some(radius)), _) if radius == 0.0 => None,
+            (Some(Some(0.0)), _) => None,
             (Some(radius), _) => Some(radius.map(CornerElement::Rounding)),
             (None, Some((value, is_length, _))) => match value {
-                Some(value) if value == 0.0 => None,
+                Some(0.0) => None,
                 Some(value) if is_length => Some(Some(CornerElement::ChamferLength(value))),
                 Some(value) => Some(Some(CornerElement::ChamferLeg(value))),
                 None => Some(None),
@@ -213,7 +213,7 @@ impl Engine<'_> {
             (None, None) => None,
         };
         let feed = contour.feed.or(match self.state.chamfer_feed_modal {
-            Some(feed) if feed == 0.0 => None,
+            Some(0.0) => None,
             other => Some(other),
         });
         if element.is_none() && !angle_open {

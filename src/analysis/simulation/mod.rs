@@ -42,3 +42,6 @@ pub fn mentions_contour_words(text: &str, config: &crate::config::MachineConfig)
 fn is_name_byte(byte: u8) -> bool {
     byte.is_ascii_alphanumeric() || byte == b'_' || byte == b'$'
 }
+
+#[cfg(test)]
+mod corner_geometry_tests;
