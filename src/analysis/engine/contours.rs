@@ -161,6 +161,11 @@ impl Engine<'_> {
         contour: &mut ContourWords,
     ) {
         let value = value.filter(|value| value.is_finite());
+        // A negative radius, chamfer or feed is not a length the control can insert; nothing is.
+        let value = match kind {
+            Word::Angle => value,
+            _ => value.map(|value| value.max(0.0)),
+        };
         let length = self.state.length_factor(self.config.metric);
         let as_length = value.zip(length).map(|(value, factor)| value * factor);
         let feed_factor = self.state.feed_factor(self.config.metric);

@@ -184,6 +184,18 @@ impl<'c> CornerStage<'c> {
                 corner_geometry::chamfer(&first, &second, length, true)
             }
         };
+        // Extreme values can overflow the geometry: a point that is not finite never reaches a move.
+        let finite = |(a, b): (f64, f64)| a.is_finite() && b.is_finite();
+        let result = result.and_then(|corner| {
+            let rounding_finite = corner.rounding.is_none_or(|rounding| {
+                finite(rounding.centre) && rounding.radius.is_finite() && rounding.sweep.is_finite()
+            });
+            if finite(corner.first_end) && finite(corner.second_start) && rounding_finite {
+                Ok(corner)
+            } else {
+                Err(NoCorner::DoesNotFit)
+            }
+        });
         let corner = match result {
             Ok(corner) => corner,
             Err(NoCorner::Tangential) => {
