@@ -39,10 +39,8 @@ pub enum RunStart {
 /// A run with its moves and the record to run it again.
 pub struct RecordedRun {
     pub execution: Execution,
-    /// The moves as the blocks program them (what a resumed run continues from).
     pub moves: Arc<Vec<ExecutedMove>>,
-    /// The path the tool takes: `moves` with the roundings and chamfers the corner stage inserts
-    /// (the same vector when there are none); `execution.findings` holds the stage's findings.
+    /// The path: `moves` with the corner stage's roundings and chamfers (the same when none).
     pub path_moves: Arc<Vec<ExecutedMove>>,
     pub start: RunStart,
     /// The pass number of every move, also for blocks that ran once (shown as 0 in `moves`).
@@ -79,26 +77,17 @@ impl std::fmt::Debug for RecordedRun {
 }
 
 impl RecordedRun {
-    /// Runs the corner stage over the moves (reference §14): `path_moves` and the stage's findings.
+    /// `path_moves` and the corner stage's findings (an unchanged run has the earlier run's).
     fn with_corners(mut self, config: &MachineConfig) -> RecordedRun {
-        if !self
-            .moves
-            .iter()
-            .any(|executed| executed.movement.contour.is_some())
-        {
-            return self;
-        }
-        let Some(main) = self.units.first().cloned() else {
+        use crate::analysis::simulation::corners::path_of;
+        let main = self.units.first().cloned();
+        let Some(main) = main.filter(|_| self.start != RunStart::Unchanged) else {
             return self;
         };
-        let mut stage = crate::analysis::simulation::CornerStage::new(config, main.text());
-        let mut path = Vec::with_capacity(self.moves.len() + 16);
-        for executed in self.moves.iter() {
-            stage.push(executed.clone(), &mut |movement| path.push(movement));
+        if let Some((path, findings)) = path_of(&self.moves, config, main.text()) {
+            super::add_stage_findings(&mut self.execution.findings, findings);
+            self.path_moves = Arc::new(path);
         }
-        let findings = stage.finish(&mut |movement| path.push(movement));
-        super::add_stage_findings(&mut self.execution.findings, findings);
-        self.path_moves = Arc::new(path);
         self
     }
 }
@@ -129,7 +118,7 @@ pub fn run_recorded(
     };
     if let Some(earlier) = earlier {
         if let Some(run) = run_again(&text, config, library, &context, earlier) {
-            return run;
+            return run.with_corners(config);
         }
     }
     let macros = Arc::new(LibraryMacros::read(library, config));
@@ -173,7 +162,7 @@ pub fn resume_run(
         setup,
         macro_files: library.macro_files(),
     };
-    run_again(&text, config, library, &context, earlier)
+    run_again(&text, config, library, &context, earlier).map(|run| run.with_corners(config))
 }
 
 /// What a run depends on besides the program's text and the called programs.
@@ -344,17 +333,9 @@ fn run_again(
                 .map(|movement| movement.pass),
         );
         let macros = Arc::clone(&earlier.macros);
-        return Some(
-            parts
-                .into_run(moves, run_end, start, context, macros, Some(raw_passes))
-                .with_corners(config),
-        );
+        return Some(parts.into_run(moves, run_end, start, context, macros, Some(raw_passes)));
     };
-    Some(
-        parts
-            .rejoin(earlier, index, moves, raw_passes, start)
-            .with_corners(config),
-    )
+    Some(parts.rejoin(earlier, index, moves, raw_passes, start))
 }
 
 /// The lines where `new` differs from `old` (of the same length), when every such line plays the

@@ -398,6 +398,28 @@ fn moves_in_plane(executed: &ExecutedMove) -> bool {
     }
 }
 
+/// The path of `moves` (a whole run of the program `text`) with the elements inserted, and the
+/// stage's findings; `None` when no move asks for an element (the path is the moves).
+pub fn path_of(
+    moves: &[ExecutedMove],
+    config: &MachineConfig,
+    text: &str,
+) -> Option<(Vec<ExecutedMove>, Vec<LineDiagnostic>)> {
+    if !moves
+        .iter()
+        .any(|executed| executed.movement.contour.is_some())
+    {
+        return None;
+    }
+    let mut stage = CornerStage::new(config, text);
+    let mut path = Vec::with_capacity(moves.len() + 16);
+    for executed in moves {
+        stage.push(executed.clone(), &mut |movement| path.push(movement));
+    }
+    let findings = stage.finish(&mut |movement| path.push(movement));
+    Some((path, findings))
+}
+
 enum Relation {
     InPlane,
     Dummy,
