@@ -254,6 +254,9 @@ codes! {
     FunctionArgumentCount = "A226", Error, "A predefined function the checker computes, called with a wrong number of arguments (`POT(2,3)`; alarm 14020).";
     IndexOutOfRange = "A227", Error, "A known index outside the dimensions of a defined array, or a negative R parameter number (alarm 17020).";
     ModuloIncrementOnUnknownPosition = "A228", Information, "An incremental move of a modulo rotary axis whose position is not known at that point (`C=IC(720)`): usual practice for such axes, whose end point is unknown here.";
+    AngleDirectionMismatch = "A240", Warning, "A straight line defined by `ANG` and one end coordinate whose angle points away from that coordinate: the control rejects the block (reference §14.6, T109; the alarm is not documented).";
+    AngleNoSolution = "A241", Error, "A contour definition by angles that has no solution: `ANG` parallel to the only given axis, or two lines of a two-block definition that are parallel (reference §14.6).";
+    RoundingAndChamfer = "A242", Information, "A block that programs both a rounding and a chamfer (`RND` with `CHR` or `CHF`): only the rounding is inserted (reference §14.1).";
     EndlessLoop = "E401", Warning, "A loop or jump cycle that the program never leaves: its state repeats unchanged, so the control would run it forever.";
     ExecutionBudgetUsed = "E402", Information, "The configured budget of executed blocks is used up: the rest of the program is read in program order and its values are uncertain.";
     LoopPassLimit = "E403", Information, "A loop that ran more passes than the configured limit: what its body changes is unknown after it.";
@@ -269,6 +272,10 @@ codes! {
     CircleOfHolesTooLong = "E423", Error, "HOLES2 whose angle between holes times the number of gaps reaches 360 degrees or more (alarm 61106): the cycle is aborted without motion.";
     CycleDepthDisagrees = "E424", Information, "A drilling cycle given both the final depth DP and the relative depth DPR, which disagree: DPR wins.";
     GridWithoutRowsOrColumns = "E425", Warning, "CYCLE801 with 0 rows or 0 columns (alarm 62105): the control stops (M0) and takes 1.";
+    CornerElementReduced = "E430", Warning, "A rounding or chamfer that does not fit the elements of its corner: it is reduced as far as it fits (the control's exact rule is not documented, reference §14.4).";
+    CornerReversal = "E431", Error, "A rounding or chamfer at a corner where the path reverses (180°): no element can be inserted (reference §14.3).";
+    ChamferAtCircle = "E432", Information, "A chamfer at a circle: the chamfer points lie on the elements at the chord distance from the corner, as the reference recommends; the control's construction is not documented (reference §14.3).";
+    CornerNotInserted = "E433", Information, "A rounding or chamfer the control does not insert: more blocks without motion in the plane follow than MD20200 allows, the plane changes, or the program ends before the next element (reference §14.4).";
     UnknownSubprogram = "W301", Warning, "A call of a subprogram that no file of the workspace defines and that is not a cycle of the control (reported only when the workspace index is complete, and not for a word S120 already reports as read as a call).";
     TooManyArguments = "W302", Warning, "A call that passes more arguments than the PROC header of the called subprogram declares.";
     MissingReferenceArgument = "W303", Warning, "A call that leaves out an argument the PROC header passes by reference (`VAR`): the subprogram has no variable to write to.";

@@ -28,6 +28,26 @@ struct PassExpectation {
     conditional: bool,
     /// `ASSUMED X Y`: these axes rest on the assumed entry state (and no others).
     assumed: Option<Vec<String>>,
+    /// `RND`, `CHF` or `CHR`: the move is an element the corner stage inserted (else it is none).
+    inserted: Option<String>,
+    /// `START=X45/Y0`: the move starts at these values.
+    start: Vec<(String, (f64, usize))>,
+    /// `CENTRE=X45/Y5`: the centre of the move's circle.
+    centre: Vec<(String, (f64, usize))>,
+    /// `FEED=100`: the move's feed.
+    element_feed: Option<(f64, usize)>,
+}
+
+/// `X45/Y5.5` as axis values.
+fn axis_values(text: &str) -> Vec<(String, (f64, usize))> {
+    text.split('/')
+        .map(|part| {
+            let split = part
+                .find(|c: char| !c.is_ascii_alphabetic())
+                .unwrap_or(part.len());
+            (part[..split].to_string(), written_number(&part[split..]))
+        })
+        .collect()
 }
 
 #[derive(Debug, Default)]
@@ -58,6 +78,22 @@ fn parse_pass(text: &str) -> PassExpectation {
         if word == "COND" {
             pass.conditional = true;
             in_assumed = false;
+            continue;
+        }
+        if matches!(word, "RND" | "CHF" | "CHR") {
+            pass.inserted = Some(word.to_string());
+            continue;
+        }
+        if let Some(values) = word.strip_prefix("START=") {
+            pass.start = axis_values(values);
+            continue;
+        }
+        if let Some(values) = word.strip_prefix("CENTRE=") {
+            pass.centre = axis_values(values);
+            continue;
+        }
+        if let Some(value) = word.strip_prefix("FEED=") {
+            pass.element_feed = Some(written_number(value));
             continue;
         }
         if word == "ASSUMED" {
@@ -344,12 +380,17 @@ fn check_case(case: &Case) -> Vec<String> {
             }
             // A block that runs more than once numbers its moves 1, 2, 3, ...; once, not at all (a
             // block that triggers a cycle makes several moves in one execution, with one number).
-            let numbers: Vec<u32> = of_line.iter().map(|executed| executed.pass).collect();
+            // Inserted roundings and chamfers carry the pass of the block's own move.
+            let counted: Vec<_> = of_line
+                .iter()
+                .filter(|executed| executed.movement.inserted.is_none())
+                .collect();
+            let numbers: Vec<u32> = counted.iter().map(|executed| executed.pass).collect();
             let once = numbers.iter().all(|number| *number == 0);
-            let by_cycles = of_line
+            let by_cycles = counted
                 .iter()
                 .any(|executed| executed.movement.cycle.is_some());
-            let numbered = if of_line.len() > 1 && !(once && by_cycles) {
+            let numbered = if numbers.len() > 1 && !(once && by_cycles) {
                 numbers.first() == Some(&1)
                     && numbers
                         .windows(2)
@@ -478,6 +519,47 @@ fn compare_pass(at: &str, expected: &PassExpectation, executed: &ExecutedMove) -
             failures.push(format!(
                 "{at}: {axis} expected {value:?}, got {actual:?} (uncertain {:?})",
                 movement.uncertain
+            ));
+        }
+    }
+    if expected.inserted.as_deref() != movement.inserted {
+        failures.push(format!(
+            "{at}: expected inserted {:?}, got {:?}",
+            expected.inserted, movement.inserted
+        ));
+    }
+    let values_agree = |expected: &[(String, (f64, usize))],
+                        actual: &[(std::sync::Arc<str>, f64)]| {
+        expected.iter().all(|(axis, (value, decimals))| {
+            actual
+                .iter()
+                .find(|(name, _)| name.as_ref() == axis.as_str())
+                .is_some_and(|(_, actual)| matches_written(*actual, *value, *decimals))
+        })
+    };
+    if !values_agree(&expected.start, &movement.start) {
+        failures.push(format!(
+            "{at}: expected start {:?}, got {:?}",
+            expected.start, movement.start
+        ));
+    }
+    if !expected.centre.is_empty() {
+        let centre = movement.arc.as_ref().map(|arc| arc.centre.as_slice());
+        if !centre.is_some_and(|centre| values_agree(&expected.centre, centre)) {
+            failures.push(format!(
+                "{at}: expected centre {:?}, got {centre:?}",
+                expected.centre
+            ));
+        }
+    }
+    if let Some((feed, decimals)) = expected.element_feed {
+        if !movement
+            .feed
+            .is_some_and(|actual| matches_written(actual, feed, decimals))
+        {
+            failures.push(format!(
+                "{at}: expected feed {feed}, got {:?}",
+                movement.feed
             ));
         }
     }

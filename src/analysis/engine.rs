@@ -17,10 +17,12 @@ use std::sync::Arc;
 mod assignments;
 mod checks;
 mod circles;
+mod contours;
 mod frame_variables;
 mod indirect_axes;
 mod join;
 mod macros;
+pub use contours::{ContourRequest, CornerElement, OpenAngle};
 pub(crate) use macros::macro_definition;
 
 /// A block that moves axes.
@@ -54,6 +56,11 @@ pub struct Move {
     /// The standard cycle whose built-in model made the move (`"CYCLE81"`, `"HOLES1"`), `None` for
     /// a move the program's own block makes.
     pub cycle: Option<Arc<str>>,
+    /// What the block asks of the corner at its end (RND, CHF, CHR, RNDM, FRC, FRCM; reference §14),
+    /// for the corner stage of the simulation; `None` for most moves.
+    pub contour: Option<Box<ContourRequest>>,
+    /// For a chamfer or rounding the corner stage inserted: `"RND"`, `"CHF"` or `"CHR"`.
+    pub inserted: Option<&'static str>,
 }
 
 /// The circle a G2/G3 block follows.
@@ -124,6 +131,8 @@ pub struct Engine<'a> {
     start_positions: Vec<Option<f64>>,
     /// The circle of the block last applied, for its move.
     last_arc: Option<crate::analysis::circle::Circle>,
+    /// What the block last applied asks of its corner (reference §14), for its move.
+    last_contour: Option<Box<ContourRequest>>,
     /// The geometry slot (X, Y, Z) of each configured axis, for frames.
     slots: crate::analysis::machine::AxisSlots,
     /// Per axis, how the current block wrote it: 0 not, 1 in workpiece coordinates, 2 as a machine
@@ -243,6 +252,7 @@ impl<'a> Engine<'a> {
                 .collect(),
             start_positions: Vec::with_capacity(config.axes.len()),
             last_arc: None,
+            last_contour: None,
             slots: crate::analysis::machine::AxisSlots::new(config),
             written: vec![0; config.axes.len()],
             stale_offset_data: None,
@@ -324,6 +334,7 @@ impl<'a> Engine<'a> {
             axis_names,
             start_positions,
             last_arc,
+            last_contour,
             slots,
             written,
             stale_offset_data: _,
@@ -343,6 +354,7 @@ impl<'a> Engine<'a> {
             axis_names,
             start_positions,
             last_arc,
+            last_contour,
             slots,
             written,
             stale_offset_data: snapshot.stale_offset_data,
@@ -405,6 +417,9 @@ impl<'a> Engine<'a> {
         }
         self.state.frame = None;
         self.tangent = None;
+        // RNDM and FRCM are kept: a program the analysis cannot see is assumed not to change them
+        // (a tool change cycle does not).
+        self.state.open_angle = None;
         // The callee may select another settable offset; it is read again when the program
         // selects one.
         self.state.offset.iter_mut().for_each(|value| *value = None);
@@ -535,6 +550,7 @@ impl<'a> Engine<'a> {
 
     fn step_block(&mut self, line: &str, block: &Block, diagnostics: &mut Vec<Diagnostic>) -> bool {
         self.last_arc = None;
+        self.last_contour = None;
         let call_followed = std::mem::take(&mut self.call_followed);
         if block.is_header {
             return false;
@@ -608,6 +624,7 @@ impl<'a> Engine<'a> {
         // A call or a kinematic change may also write the settable frames' data (measuring cycles do).
         let mut frame_data_changed = forget_for_frames;
         let mut circle_words = CircleWords::default();
+        let mut contour = contours::ContourWords::default();
         for statement in statements {
             match statement {
                 Statement::Address(word) => match word.kind {
@@ -690,6 +707,9 @@ impl<'a> Engine<'a> {
                             self.word_value(line, block, word, diagnostics);
                         moved |= functions.frame_or_pole.is_none() && !functions.dwell;
                     }
+                    AddressKind::Named(NamedAddress::Other) => {
+                        self.read_contour_address(line, block, word, &mut contour, diagnostics);
+                    }
                     AddressKind::MFunction => {
                         // A tool change (M6) may run a machine-specific cycle that moves axes.
                         let value = self.word_value(line, block, word, diagnostics);
@@ -699,6 +719,21 @@ impl<'a> Engine<'a> {
                     }
                     _ => {}
                 },
+                // `ANG=30` (and a configured name the parser does not know) reads as an assignment.
+                Statement::Assignment {
+                    target,
+                    target_span,
+                    value,
+                    ..
+                } if self.read_contour_assignment(
+                    line,
+                    block,
+                    target,
+                    *target_span,
+                    *value,
+                    &mut contour,
+                    diagnostics,
+                ) => {}
                 Statement::Assignment {
                     target,
                     target_span,
@@ -794,6 +829,14 @@ impl<'a> Engine<'a> {
                 None => self.state.feed = None,
             }
         }
+        // ANG changes the programmed position (reference §14.6); a rounding or chamfer only the path.
+        let mut angle_open = false;
+        if contour.any() || self.state.open_angle.is_some() {
+            let (angle_moves, opened) =
+                self.apply_contour_angle(&contour, &mut start_positions, diagnostics);
+            moved |= angle_moves;
+            angle_open = opened;
+        }
         let motion = self.state.groups[1]
             .map(GCode::name)
             .unwrap_or(Cow::Borrowed(""));
@@ -871,6 +914,9 @@ impl<'a> Engine<'a> {
         }
         crate::analysis::machine::update_after_block(&mut self.state, &self.slots, &self.written);
         let result = moves_axes;
+        if moves_axes {
+            self.last_contour = self.contour_request(&contour, angle_open, diagnostics);
+        }
         self.last_arc = arc;
         self.start_positions = start_positions;
         if forget_after {
@@ -1787,6 +1833,8 @@ impl<'a> Engine<'a> {
             transverse_as_diameter: shows_diameter == Some(true),
             plane: self.state.plane_axis_names(),
             cycle: None,
+            contour: self.last_contour.clone(),
+            inserted: None,
         }
     }
 }

@@ -22,6 +22,7 @@ pub mod machine;
 pub mod offsets;
 pub mod position_reads;
 pub mod resolution;
+pub mod simulation;
 pub mod state;
 
 pub use engine::{Engine, Move};

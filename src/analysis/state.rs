@@ -51,6 +51,12 @@ pub struct ModalState {
     pub polar_angle: Option<f64>,
     /// The stored polar radius RP in the basic unit system.
     pub polar_radius: Option<f64>,
+    /// The modal rounding radius `RNDM` in the basic unit system (0 = off, `None` unknown).
+    pub rounding_modal: Option<f64>,
+    /// The modal feed of chamfers and roundings `FRCM` in the basic unit system (0 = off).
+    pub chamfer_feed_modal: Option<f64>,
+    /// The first line of a two-block contour definition by angles, waiting for its second line.
+    pub open_angle: Option<crate::analysis::engine::OpenAngle>,
 }
 
 /// The pole of a plane.
@@ -126,6 +132,9 @@ impl ModalState {
             poles: [Pole::Undefined; 3],
             polar_angle: None,
             polar_radius: None,
+            rounding_modal: Some(0.0),
+            chamfer_feed_modal: Some(0.0),
+            open_angle: None,
         };
         for name in SIEMENS_RESET {
             if let Some(code) = gcode_by_written_name(name) {

@@ -204,7 +204,7 @@ fn write_csv_header(out: &mut dyn Write, config: &MachineConfig) -> io::Result<(
     for axis in &config.axes {
         write!(out, ",{}", axis.name)?;
     }
-    writeln!(out, ",feed,uncertain,pass,file,cycle")
+    writeln!(out, ",feed,uncertain,pass,file,cycle,inserted")
 }
 
 fn write_csv_row(
@@ -247,6 +247,11 @@ fn write_csv_row(
     } else {
         write!(out, ",{pass},{file}")?;
     }
-    // The cycle's name is a plain word: it needs no quoting.
-    writeln!(out, ",{}", movement.cycle.as_deref().unwrap_or(""))
+    // The cycle's name and the inserted element are plain words: they need no quoting.
+    writeln!(
+        out,
+        ",{},{}",
+        movement.cycle.as_deref().unwrap_or(""),
+        movement.inserted.unwrap_or("")
+    )
 }

@@ -159,7 +159,12 @@ fn write_move_fields(out: &mut dyn Write, movement: &Move, first: bool) -> io::R
         }
         serde_json::to_writer(&mut *out, name.as_ref())?;
     }
-    out.write_all(b"]")
+    out.write_all(b"]")?;
+    // A rounding or chamfer the corner stage inserted (reference §14); absent on other moves.
+    if let Some(inserted) = movement.inserted {
+        write!(out, ",\"inserted\":\"{inserted}\"")?;
+    }
+    Ok(())
 }
 
 /// Closes the `moves` array and writes the diagnostics with 1-based lines and character columns

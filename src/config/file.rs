@@ -197,6 +197,8 @@ struct RawConfig {
     execution: super::execution::RawExecution,
     #[serde(default)]
     cycles: super::cycles::RawCycles,
+    #[serde(default)]
+    contours: super::contours::RawContours,
 }
 
 /// The `[machine]` table. Numbers are read as `i64` and range-checked here, which gives a clearer
@@ -495,6 +497,10 @@ impl RawConfig {
             .cycles
             .convert()
             .map_err(|(name, message)| invalid(&[key("cycles"), key(name)], message))?;
+        config.contours = self
+            .contours
+            .convert()
+            .map_err(|(name, message)| invalid(&[key("contours"), key(name)], message))?;
         Ok(config)
     }
 }

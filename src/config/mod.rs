@@ -2,6 +2,7 @@
 //! and tolerances. Plain data with defaults; reading `sinumerik.toml` lives in `file.rs`.
 
 pub mod cycles;
+pub mod contours;
 pub mod execution;
 mod file;
 
@@ -104,6 +105,8 @@ pub struct MachineConfig {
     pub execution: execution::ExecutionOptions,
     /// How the built-in models of the standard cycles behave (`[cycles]`).
     pub cycles: cycles::CycleOptions,
+    /// How chamfers and roundings are inserted (`[contours]`).
+    pub contours: contours::ContourOptions,
 }
 
 impl Default for MachineConfig {
@@ -139,6 +142,7 @@ impl MachineConfig {
             frame_fine_trans: false,
             execution: Default::default(),
             cycles: Default::default(),
+            contours: Default::default(),
         }
     }
 

@@ -32,6 +32,8 @@ pub enum DocumentExecution {
         by_line: Vec<Range<u32>>,
         /// The indexes of the moves sorted by their outer line, in execution order within a line.
         order: Vec<u32>,
+        /// The same for the run's `path_moves`, when the corner stage inserted elements.
+        path_order: Option<Vec<u32>>,
     },
 }
 
@@ -82,7 +84,10 @@ pub fn execute_document(
                     config,
                     macros.names(),
                 );
-                if !unit.flow.has_flow {
+                // Roundings and chamfers change the path, which only the run's corner stage makes.
+                if !unit.flow.has_flow
+                    && !crate::analysis::simulation::mentions_contour_words(&text, config)
+                {
                     return DocumentExecution::InOrder;
                 }
             }
@@ -103,11 +108,16 @@ pub fn execute_document(
         None => entry_assumptions(&text, config, kind, options),
     };
     let (by_line, order) = index_by_line(&run.moves, source.line_count());
+    // The toolpath shows the path with roundings and chamfers; the hover and the inlay hints the
+    // programmed positions (reference §14.2).
+    let path_order = (!Arc::ptr_eq(&run.moves, &run.path_moves))
+        .then(|| index_by_line(&run.path_moves, source.line_count()).1);
     DocumentExecution::Executed {
         run: Arc::new(run),
         assumed,
         by_line,
         order,
+        path_order,
     }
 }
 
@@ -137,13 +147,22 @@ fn index_by_line(moves: &[ExecutedMove], line_count: usize) -> (Vec<Range<u32>>,
 }
 
 impl DocumentExecution {
-    /// The moves whose outer line is in `lines`, in execution order; `None` when the document runs
-    /// in program order.
+    /// The moves whose outer line is in `lines`, in execution order, on the path the tool takes
+    /// (with inserted roundings and chamfers); `None` when the document runs in program order.
     pub fn moves_in(&self, lines: Range<usize>) -> Option<Vec<&ExecutedMove>> {
-        let DocumentExecution::Executed { run, order, .. } = self else {
+        let DocumentExecution::Executed {
+            run,
+            order,
+            path_order,
+            ..
+        } = self
+        else {
             return None;
         };
-        let moves = &run.moves;
+        let (moves, order) = match path_order {
+            Some(path_order) => (&run.path_moves, path_order),
+            None => (&run.moves, order),
+        };
         let first =
             order.partition_point(|&index| moves[index as usize].outer_line() < lines.start);
         let last = order.partition_point(|&index| moves[index as usize].outer_line() < lines.end);
@@ -158,7 +177,7 @@ impl DocumentExecution {
     }
 
     /// The moves line `line` of the document causes (its own, or those of the program it calls), in
-    /// execution order.
+    /// execution order, as the blocks program them (a rounded corner ends at the corner).
     pub fn moves_of_line(&self, line: usize) -> Vec<&ExecutedMove> {
         match self {
             DocumentExecution::InOrder => Vec::new(),
@@ -401,6 +420,39 @@ mod tests {
         let execution = run("G90 G0 X1\nX2\nM30\n", ProgramKind::Main);
         assert_eq!(execution, DocumentExecution::InOrder);
         assert_eq!(execution.passes_of_line(1), 1);
+    }
+
+    #[test]
+    fn a_program_with_roundings_runs_through_the_corner_stage() {
+        // T106 and a rounding at a reversal: the editor gets the path with the inserted element and
+        // the stage's finding, as `check` does.
+        let text = "G17 G90 G1 X0 Y0 F100\nX50 Y0 RND=5\nY50 RND=2\nY0\nM30\n";
+        let execution = run(text, ProgramKind::Main);
+        let path = execution.moves_in(1..2).expect("executed");
+        let of_corner: Vec<Option<&str>> = path
+            .iter()
+            .map(|executed| executed.movement.inserted)
+            .collect();
+        assert_eq!(of_corner, vec![None, Some("RND")]);
+        assert_eq!(path[0].movement.end[0].1, 45.0);
+        // The hover and the inlay hints show the programmed corner (T115).
+        let programmed = execution.moves_of_line(1);
+        assert_eq!(programmed.len(), 1);
+        assert_eq!(programmed[0].movement.end[0].1, 50.0);
+        let codes: Vec<(usize, &str)> = execution
+            .findings()
+            .iter()
+            .map(|finding| (finding.line, finding.diagnostic.code.as_str()))
+            .collect();
+        assert_eq!(codes, vec![(2, "E431")]);
+        let checked = crate::analysis::execution::execution_findings(
+            text,
+            &MachineConfig::mill(),
+            ProgramKind::Main,
+            &NoLibrary,
+            &ExecutionOptions::default(),
+        );
+        assert_eq!(checked.as_slice(), execution.findings());
     }
 
     #[test]

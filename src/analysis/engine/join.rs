@@ -46,6 +46,9 @@ impl ModalState {
         }
         keep_if_equal(&mut self.polar_angle, &other.polar_angle);
         keep_if_equal(&mut self.polar_radius, &other.polar_radius);
+        keep_if_equal(&mut self.rounding_modal, &other.rounding_modal);
+        keep_if_equal(&mut self.chamfer_feed_modal, &other.chamfer_feed_modal);
+        keep_if_equal(&mut self.open_angle, &other.open_angle);
     }
 }
 

@@ -84,6 +84,9 @@ pub struct Interpreter<'a, 's> {
     pub(super) first_passes: Option<FirstPasses>,
     /// The built-in models of the standard cycles (`cycles/`).
     pub(super) cycles: CycleState,
+    /// Set when a block that moves asks for a rounding, chamfer or angle at its corner, for a
+    /// counting run that must know whether the corner stage has anything to do.
+    corner_flag: Option<&'s std::cell::Cell<bool>>,
 }
 
 impl<'a, 's> Interpreter<'a, 's> {
@@ -119,6 +122,7 @@ impl<'a, 's> Interpreter<'a, 's> {
             setup: RunSetup::default(),
             first_passes: None,
             cycles: CycleState::default(),
+            corner_flag: None,
         }
     }
 
@@ -404,6 +408,9 @@ impl<'a, 's> Interpreter<'a, 's> {
             self.scratch.clear();
             let moved = engine.step(line, &block, &mut self.scratch)
                 && control.level().curve_table.is_none();
+            if let Some(flag) = self.corner_flag.filter(|_| moved) {
+                flag.set(flag.get() || engine.has_contour_request());
+            }
             self.update_assumptions(control, engine, line, &block);
             if moved && !self.counting && !control.widening() {
                 self.record_move(control, engine, unit_index, pc, line, &block);
@@ -536,7 +543,11 @@ impl<'a, 's> Interpreter<'a, 's> {
             self.passes[0][pc] += 1;
             self.scratch.clear();
             let line = unit.line(pc);
-            if engine.step(line, &block, &mut self.scratch) && !self.counting {
+            let moved = engine.step(line, &block, &mut self.scratch);
+            if let Some(flag) = self.corner_flag.filter(|_| moved) {
+                flag.set(flag.get() || engine.has_contour_request());
+            }
+            if moved && !self.counting {
                 let pass = self.pass_of(0, pc);
                 (self.sink)(ExecutedMove {
                     movement: engine.describe_last_move(pc, line, &block),
@@ -575,6 +586,12 @@ impl<'a, 's> Interpreter<'a, 's> {
     }
 
     /// Makes this run one that only counts how often each block runs.
+    /// Sets `flag` when a block that moves asks for a rounding, chamfer or angle at its corner.
+    pub fn watching_corners(mut self, flag: &'s std::cell::Cell<bool>) -> Self {
+        self.corner_flag = Some(flag);
+        self
+    }
+
     pub fn counting_only(mut self) -> Self {
         self.counting = true;
         self

@@ -163,6 +163,38 @@ pub fn execute_with(
     setup: &entry::RunSetup,
     visit: &mut dyn FnMut(ExecutedMove),
 ) -> Execution {
+    // The corner stage inserts roundings and chamfers between the moves (reference §14); moves of
+    // programs without them pass straight through.
+    let mut stage = crate::analysis::simulation::CornerStage::new(config, text);
+    let mut execution = {
+        let mut staged = |movement: ExecutedMove| stage.push(movement, visit);
+        execute_programmed(text, config, kind, library, options, setup, &mut staged)
+    };
+    let findings = stage.finish(visit);
+    add_stage_findings(&mut execution.findings, findings);
+    execution
+}
+
+/// Adds the corner stage's findings to a run's, in the run's order (by line and column).
+pub(crate) fn add_stage_findings(findings: &mut Vec<LineDiagnostic>, stage: Vec<LineDiagnostic>) {
+    if stage.is_empty() {
+        return;
+    }
+    findings.extend(stage);
+    findings.sort_by_key(|item| (item.line, item.diagnostic.span.start()));
+}
+
+/// The run of [`execute_with`] without the corner stage: the moves of the blocks as they program
+/// them, with sharp corners.
+pub fn execute_programmed(
+    text: &str,
+    config: &MachineConfig,
+    kind: ProgramKind,
+    library: &dyn ProgramLibrary,
+    options: &ExecutionOptions,
+    setup: &entry::RunSetup,
+    visit: &mut dyn FnMut(ExecutedMove),
+) -> Execution {
     let macros = Arc::new(library_macros::LibraryMacros::read(library, config));
     let main = Arc::new(program::ProgramUnit::with_macro_names(
         String::new(),
@@ -225,10 +257,18 @@ pub fn execution_findings(
     options: &ExecutionOptions,
 ) -> Vec<LineDiagnostic> {
     let mut ignore = |_: ExecutedMove| {};
-    interpreter::Interpreter::new(config, library, options, &mut ignore)
+    let corners = std::cell::Cell::new(false);
+    let findings = interpreter::Interpreter::new(config, library, options, &mut ignore)
         .counting_only()
+        .watching_corners(&corners)
         .run(Arc::from(text), kind)
-        .findings
+        .findings;
+    if !corners.get() {
+        return findings;
+    }
+    // The corner stage needs the moves: the program is run again with them, which also gives the
+    // run's own findings.
+    execute(text, config, kind, library, options, &mut ignore).findings
 }
 
 /// Runs a program like [`execute`] and keeps its moves.

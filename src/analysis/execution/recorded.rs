@@ -40,6 +40,8 @@ pub enum RunStart {
 pub struct RecordedRun {
     pub execution: Execution,
     pub moves: Arc<Vec<ExecutedMove>>,
+    /// The path: `moves` with the corner stage's roundings and chamfers (the same when none).
+    pub path_moves: Arc<Vec<ExecutedMove>>,
     pub start: RunStart,
     /// The pass number of every move, also for blocks that ran once (shown as 0 in `moves`).
     raw_passes: Arc<Vec<u32>>,
@@ -74,6 +76,22 @@ impl std::fmt::Debug for RecordedRun {
     }
 }
 
+impl RecordedRun {
+    /// `path_moves` and the corner stage's findings (an unchanged run has the earlier run's).
+    fn with_corners(mut self, config: &MachineConfig) -> RecordedRun {
+        use crate::analysis::simulation::corners::path_of;
+        let main = self.units.first().cloned();
+        let Some(main) = main.filter(|_| self.start != RunStart::Unchanged) else {
+            return self;
+        };
+        if let Some((path, findings)) = path_of(&self.moves, config, main.text()) {
+            super::add_stage_findings(&mut self.execution.findings, findings);
+            self.path_moves = Arc::new(path);
+        }
+        self
+    }
+}
+
 impl PartialEq for RecordedRun {
     /// Two runs are equal when they give the same moves and the same execution.
     fn eq(&self, other: &RecordedRun) -> bool {
@@ -100,7 +118,7 @@ pub fn run_recorded(
     };
     if let Some(earlier) = earlier {
         if let Some(run) = run_again(&text, config, library, &context, earlier) {
-            return run;
+            return run.with_corners(config);
         }
     }
     let macros = Arc::new(LibraryMacros::read(library, config));
@@ -121,7 +139,9 @@ pub fn run_recorded(
     let start = interpreter.start(main, kind);
     let end = interpreter.run_from(start);
     let parts = Parts::take(interpreter);
-    parts.into_run(moves, end, RunStart::Fresh, &context, macros, None)
+    parts
+        .into_run(moves, end, RunStart::Fresh, &context, macros, None)
+        .with_corners(config)
 }
 
 /// The run of `text` resumed from `earlier`, when the edit allows it (see the module's comment);
@@ -142,7 +162,7 @@ pub fn resume_run(
         setup,
         macro_files: library.macro_files(),
     };
-    run_again(&text, config, library, &context, earlier)
+    run_again(&text, config, library, &context, earlier).map(|run| run.with_corners(config))
 }
 
 /// What a run depends on besides the program's text and the called programs.
@@ -189,6 +209,7 @@ fn run_again(
         return Some(RecordedRun {
             execution: earlier.execution.clone(),
             moves: Arc::clone(&earlier.moves),
+            path_moves: Arc::clone(&earlier.path_moves),
             start: RunStart::Unchanged,
             raw_passes: Arc::clone(&earlier.raw_passes),
             findings_in_order: Arc::clone(&earlier.findings_in_order),
@@ -436,9 +457,11 @@ impl<'a> Parts<'a> {
             &self.execution.pass_totals,
             &self.units,
         );
+        let moves = Arc::new(moves);
         RecordedRun {
             execution: self.execution,
-            moves: Arc::new(moves),
+            path_moves: Arc::clone(&moves),
+            moves,
             start,
             raw_passes: Arc::new(raw_passes),
             findings_in_order: Arc::new(self.findings_in_order),
@@ -528,9 +551,11 @@ impl<'a> Parts<'a> {
             &self.execution.pass_totals,
             &self.units,
         );
+        let moves = Arc::new(moves);
         RecordedRun {
             execution: self.execution,
-            moves: Arc::new(moves),
+            path_moves: Arc::clone(&moves),
+            moves,
             start,
             raw_passes: Arc::new(raw_passes),
             findings_in_order: Arc::new(findings),
