@@ -253,6 +253,7 @@ codes! {
     ArithmeticError = "A225", Error, "An arithmetic error other than a division by zero in an expression whose values are known: a result beyond the range of a double, or a function argument outside its domain (`SQRT(-1)`, `ACOS(2)`, `LN(0)`) (alarm 14051).";
     FunctionArgumentCount = "A226", Error, "A predefined function the checker computes, called with a wrong number of arguments (`POT(2,3)`; alarm 14020).";
     IndexOutOfRange = "A227", Error, "A known index outside the dimensions of a defined array, or a negative R parameter number (alarm 17020).";
+    FeedNotReprogrammed = "A240", Error, "A feed move after a change between G93, G94 and G95 without a new F: the control does not reuse the old feed (alarm 10860); its machining time is unknown.";
     EndlessLoop = "E401", Warning, "A loop or jump cycle that the program never leaves: its state repeats unchanged, so the control would run it forever.";
     ExecutionBudgetUsed = "E402", Information, "The configured budget of executed blocks is used up: the rest of the program is read in program order and its values are uncertain.";
     LoopPassLimit = "E403", Information, "A loop that ran more passes than the configured limit: what its body changes is unknown after it.";

@@ -21,6 +21,7 @@ mod frame_variables;
 mod indirect_axes;
 mod join;
 mod macros;
+pub mod spindle;
 pub(crate) use macros::macro_definition;
 
 /// A block that moves axes.
@@ -51,6 +52,8 @@ pub struct Move {
     pub plane: Option<(&'static str, &'static str)>,
     /// Whether the values of transverse axes in `start`, `end` and `arc` are diameters.
     pub transverse_as_diameter: bool,
+    /// What the machining time of the move depends on besides its geometry (`engine/spindle.rs`).
+    pub timing: spindle::Timing,
 }
 
 /// The circle a G2/G3 block follows.
@@ -146,6 +149,8 @@ pub struct Engine<'a> {
     /// Set by the interpreter for one block whose call it runs itself (the callee was found): the call
     /// then forgets nothing, since the callee's own blocks say what changes.
     call_followed: bool,
+    /// The dwell of the block last applied, if it was a `G4` block.
+    last_dwell: Option<spindle::Dwell>,
 }
 
 /// What the engine remembers about the program beyond the modal state: its macros and what the
@@ -258,6 +263,7 @@ impl<'a> Engine<'a> {
             axes: AxisLookup::new(config),
             executing: false,
             call_followed: false,
+            last_dwell: None,
         }
     }
 
@@ -331,6 +337,7 @@ impl<'a> Engine<'a> {
             axes,
             executing,
             call_followed,
+            last_dwell,
         } = Engine::new(config);
         Engine {
             config,
@@ -350,6 +357,7 @@ impl<'a> Engine<'a> {
             axes,
             executing,
             call_followed,
+            last_dwell,
         }
     }
 
@@ -394,6 +402,7 @@ impl<'a> Engine<'a> {
     fn forget_what_a_call_may_change(&mut self, frame_data_changed: bool, locals: bool) {
         // The callee may have programmed a feed, so a later feed move without F is not reported.
         self.missing_feed_reported = true;
+        self.state.spindle.forget();
         self.state.forget_positions();
         if locals {
             self.state.variables.forget_all();
@@ -532,6 +541,7 @@ impl<'a> Engine<'a> {
 
     fn step_block(&mut self, line: &str, block: &Block, diagnostics: &mut Vec<Diagnostic>) -> bool {
         self.last_arc = None;
+        self.last_dwell = None;
         let call_followed = std::mem::take(&mut self.call_followed);
         if block.is_header {
             return false;
@@ -560,6 +570,7 @@ impl<'a> Engine<'a> {
         let mut offset_selected = false;
         let units_before = self.state.groups[13];
         let mut unit_word = None;
+        let feed_type_before = self.state.groups[15];
         self.written.iter_mut().for_each(|kind| *kind = 0);
         for statement in statements {
             if let Statement::GCode { code, span } = statement {
@@ -870,6 +881,8 @@ impl<'a> Engine<'a> {
         let result = moves_axes;
         self.last_arc = arc;
         self.start_positions = start_positions;
+        let feed_move = moves_axes && matches!(motion.as_ref(), "G1" | "G2" | "G3" | "CIP" | "CT");
+        self.observe_timing(line, block, feed_type_before, feed_move, diagnostics);
         if forget_after {
             self.forget_what_a_call_may_change(frame_data_changed, locals_may_change);
         }
@@ -1776,7 +1789,40 @@ impl<'a> Engine<'a> {
             arc,
             transverse_as_diameter: shows_diameter == Some(true),
             plane: self.state.plane_axis_names(),
+            timing: self.timing(),
         }
+    }
+
+    /// The dwell of the block last applied with [`Engine::step`], if it was a `G4` block: a move of
+    /// no axis (`start` and `end` empty, motion `G4`) whose `timing.dwell` holds the time. Consumers
+    /// of the path never see it unless they ask for it (`ExecutionOptions::dwell_moves`).
+    pub fn describe_last_dwell(
+        &self,
+        line_index: usize,
+        line: &str,
+        block: &Block,
+    ) -> Option<Move> {
+        let dwell = self.last_dwell?;
+        let block_number = block
+            .number
+            .map(|number| line[number.span.start()..number.span.end()].to_string());
+        Some(Move {
+            line: line_index,
+            block_number,
+            motion: Cow::Borrowed("G4"),
+            start: Vec::new(),
+            end: Vec::new(),
+            machine: None,
+            feed: self.state.feed,
+            uncertain: Vec::new(),
+            arc: None,
+            plane: self.state.plane_axis_names(),
+            transverse_as_diameter: self.state.shows_diameter() == Some(true),
+            timing: spindle::Timing {
+                dwell: Some(dwell),
+                ..self.timing()
+            },
+        })
     }
 }
 

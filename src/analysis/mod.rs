@@ -22,6 +22,7 @@ pub mod machine;
 pub mod offsets;
 pub mod position_reads;
 pub mod resolution;
+pub mod simulation;
 pub mod state;
 
 pub use engine::{Engine, Move};
@@ -133,6 +134,25 @@ pub fn visit_moves(
     mut visit: impl FnMut(&Move),
 ) -> Vec<LineDiagnostic> {
     for_each_move(text, config, kind, |movement| visit(&movement))
+}
+
+/// Like [`visit_moves`], also handing over the move of each dwell block (`G4`, see
+/// [`Engine::describe_last_dwell`]), in program order: what the machining time of a program read in
+/// program order needs.
+pub fn visit_moves_and_dwells(
+    text: &str,
+    config: &MachineConfig,
+    kind: ProgramKind,
+    mut visit: impl FnMut(&Move),
+) -> Vec<LineDiagnostic> {
+    let mut engine = new_engine(text, config, kind);
+    crate::syntax::visit_blocks(text, config, |line_index, line, block, findings| {
+        if engine.step(line, block, findings) {
+            visit(&engine.describe_last_move(line_index, line, block));
+        } else if let Some(dwell) = engine.describe_last_dwell(line_index, line, block) {
+            visit(&dwell);
+        }
+    })
 }
 
 /// Like [`visit_moves`], handing each move over by value, so that a caller that keeps them (as

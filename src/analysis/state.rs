@@ -51,6 +51,8 @@ pub struct ModalState {
     pub polar_angle: Option<f64>,
     /// The stored polar radius RP in the basic unit system.
     pub polar_radius: Option<f64>,
+    /// The master spindle and the feed type's state for the machining time.
+    pub spindle: crate::analysis::engine::spindle::SpindleState,
 }
 
 /// The pole of a plane.
@@ -126,6 +128,7 @@ impl ModalState {
             poles: [Pole::Undefined; 3],
             polar_angle: None,
             polar_radius: None,
+            spindle: Default::default(),
         };
         for name in SIEMENS_RESET {
             if let Some(code) = gcode_by_written_name(name) {

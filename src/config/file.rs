@@ -195,6 +195,8 @@ struct RawConfig {
     offsets: BTreeMap<String, BTreeMap<String, f64>>,
     #[serde(default)]
     execution: super::execution::RawExecution,
+    #[serde(default)]
+    timing: super::timing::RawTiming,
 }
 
 /// The `[machine]` table. Numbers are read as `i64` and range-checked here, which gives a clearer
@@ -489,6 +491,15 @@ impl RawConfig {
             .execution
             .convert()
             .map_err(|(name, message)| invalid(&[key("execution"), key(name)], message))?;
+        config.timing = self
+            .timing
+            .convert(&config.axes)
+            .map_err(|(path, message)| {
+                let keys: Vec<KeySegment> = std::iter::once(key("timing"))
+                    .chain(path.iter().map(|name| key(name)))
+                    .collect();
+                invalid(&keys, message)
+            })?;
         Ok(config)
     }
 }

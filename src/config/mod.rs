@@ -3,6 +3,7 @@
 
 pub mod execution;
 mod file;
+pub mod timing;
 
 pub use file::{
     discover_config_file, load_config_file, parse_config_text, ConfigError, CONFIG_FILE_NAME,
@@ -101,6 +102,8 @@ pub struct MachineConfig {
     pub frame_fine_trans: bool,
     /// How the interpreter runs programs (`[execution]`).
     pub execution: execution::ExecutionOptions,
+    /// How machining time is estimated (`[timing]`).
+    pub timing: timing::TimingOptions,
 }
 
 impl Default for MachineConfig {
@@ -135,6 +138,7 @@ impl MachineConfig {
             frame_offset_incr_prog: true,
             frame_fine_trans: false,
             execution: Default::default(),
+            timing: Default::default(),
         }
     }
 

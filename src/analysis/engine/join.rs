@@ -46,6 +46,7 @@ impl ModalState {
         }
         keep_if_equal(&mut self.polar_angle, &other.polar_angle);
         keep_if_equal(&mut self.polar_radius, &other.polar_radius);
+        self.spindle.join(&other.spindle);
     }
 }
 
