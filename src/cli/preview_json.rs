@@ -54,10 +54,63 @@ pub(crate) fn write_header_with(
     out.write_all(b"\n\"moves\": [")
 }
 
-/// Writes one move; `first` says whether it opens the array.
-pub(crate) fn write_move(out: &mut dyn Write, movement: &Move, first: bool) -> io::Result<()> {
+/// Writes one move with its time in seconds (`null` when unknown); `first` says whether it opens
+/// the array.
+pub(crate) fn write_move(
+    out: &mut dyn Write,
+    movement: &Move,
+    first: bool,
+    time_s: Option<f64>,
+) -> io::Result<()> {
     write_move_fields(out, movement, first)?;
+    write_time(out, time_s)?;
     out.write_all(b"}")
+}
+
+/// Writes `,"time_s":` and the seconds, rounded to microseconds, or `null`.
+fn write_time(out: &mut dyn Write, time_s: Option<f64>) -> io::Result<()> {
+    out.write_all(b",\"time_s\":")?;
+    write_seconds(out, time_s)
+}
+
+/// Seconds rounded to microseconds, written from their integer microseconds (a preview writes one
+/// per move); `null` when unknown.
+fn write_seconds(out: &mut dyn Write, seconds: Option<f64>) -> io::Result<()> {
+    let micros = match seconds {
+        Some(seconds) if seconds.is_finite() && (0.0..1e12).contains(&seconds) => {
+            (seconds * 1e6).round() as u64
+        }
+        Some(seconds) if seconds.is_finite() => {
+            return serde_json::to_writer(out, &seconds).map_err(io::Error::from)
+        }
+        _ => return out.write_all(b"null"),
+    };
+    let (whole, fraction) = (micros / 1_000_000, micros % 1_000_000);
+    if fraction == 0 {
+        return write!(out, "{whole}.0");
+    }
+    let mut digits = format!("{fraction:06}");
+    while digits.ends_with('0') {
+        digits.pop();
+    }
+    write!(out, "{whole}.{digits}")
+}
+
+/// Writes the top-level `"time"` of the preview: the sums over the moves and dwells, and how many
+/// moves' times are unknown.
+pub(crate) fn write_time_totals(
+    out: &mut dyn Write,
+    totals: &crate::analysis::simulation::time::TimeTotals,
+) -> io::Result<()> {
+    out.write_all(b"\n\"time\":{\"total_s\":")?;
+    write_seconds(out, Some(totals.total_s))?;
+    out.write_all(b",\"feed_s\":")?;
+    write_seconds(out, Some(totals.feed_s))?;
+    out.write_all(b",\"rapid_s\":")?;
+    write_seconds(out, Some(totals.rapid_s))?;
+    out.write_all(b",\"dwell_s\":")?;
+    write_seconds(out, Some(totals.dwell_s))?;
+    write!(out, ",\"unknown_moves\":{}}},", totals.unknown_moves)
 }
 
 /// Writes one executed move: the move's fields, then what execution adds (`pass`, `file`, `stack`,
@@ -67,8 +120,10 @@ pub(crate) fn write_executed_move(
     executed: &ExecutedMove,
     first: bool,
     file: &str,
+    time_s: Option<f64>,
 ) -> io::Result<()> {
     write_move_fields(out, &executed.movement, first)?;
+    write_time(out, time_s)?;
     if executed.pass > 0 {
         write!(out, ",\"pass\":{}", executed.pass)?;
     }
@@ -158,14 +213,17 @@ fn write_move_fields(out: &mut dyn Write, movement: &Move, first: bool) -> io::R
     out.write_all(b"]")
 }
 
-/// Closes the `moves` array and writes the diagnostics with 1-based lines and character columns
-/// (`columns` converts a line's byte span).
+/// Closes the `moves` array and writes the time totals and the diagnostics with 1-based lines and
+/// character columns (`columns` converts a line's byte span).
 pub(crate) fn write_footer(
     out: &mut dyn Write,
+    totals: &crate::analysis::simulation::time::TimeTotals,
     diagnostics: &[LineDiagnostic],
     columns: &dyn Fn(&LineDiagnostic) -> (usize, usize),
 ) -> io::Result<()> {
-    out.write_all(b"\n],\n\"diagnostics\": [")?;
+    out.write_all(b"\n],")?;
+    write_time_totals(out, totals)?;
+    out.write_all(b"\n\"diagnostics\": [")?;
     for (index, item) in diagnostics.iter().enumerate() {
         out.write_all(if index == 0 { b"\n  " } else { b",\n  " })?;
         let (column, end_column) = columns(item);
@@ -227,6 +285,27 @@ mod tests {
         let mut out = Vec::new();
         write_number(&mut out, value).unwrap();
         String::from_utf8(out).unwrap()
+    }
+
+    fn seconds(value: Option<f64>) -> String {
+        let mut out = Vec::new();
+        write_seconds(&mut out, value).unwrap();
+        String::from_utf8(out).unwrap()
+    }
+
+    #[test]
+    fn seconds_print_to_the_microsecond() {
+        assert_eq!(seconds(Some(12.0)), "12.0");
+        assert_eq!(seconds(Some(9.42477796)), "9.424778");
+        assert_eq!(seconds(Some(0.015)), "0.015");
+        assert_eq!(seconds(Some(0.0000004)), "0.0");
+        assert_eq!(seconds(None), "null");
+        assert_eq!(seconds(Some(f64::NAN)), "null");
+        for value in [0.1, 1.5, 45.898544, 1234.000001] {
+            let text = seconds(Some(value));
+            let back: f64 = text.parse().unwrap();
+            assert!((back - value).abs() < 1e-6, "{value} {text}");
+        }
     }
 
     #[test]

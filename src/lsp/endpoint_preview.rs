@@ -7,7 +7,9 @@ use crate::analysis::ProgramKind;
 use crate::cli::preview::{line_columns, write_executed_preview_json, write_preview_json};
 use crate::cli::source_file::read_source_file;
 use crate::config::MachineConfig;
+use crate::ide::timing::TimeModel;
 use crate::ide::execution::{execute_document, DocumentExecution};
+use crate::ide::timing::DocumentTimes;
 use crate::lsp::documents::Analysed;
 use serde_json::Value;
 use std::path::Path;
@@ -34,11 +36,16 @@ impl LineSelection {
 fn preview(
     analysis: &DocumentAnalysis,
     execution: &DocumentExecution,
+    times: &DocumentTimes,
     source: &dyn LineSource,
     label: &str,
     lines: LineSelection,
 ) -> Result<Value, String> {
     let range = lines.range(source.line_count());
+    // Each move's time, and the totals of the lines asked for (with their dwells): the sum over
+    // the ranges of a whole document is the document's total.
+    let model = TimeModel::new(analysis.config());
+    let totals = times.totals_in(range.clone());
     let diagnostics = analysis.diagnostics();
     let first = diagnostics.partition_point(|item| item.line < range.start);
     let last = diagnostics.partition_point(|item| item.line < range.end);
@@ -60,6 +67,7 @@ fn preview(
             analysis.config().metric,
             execution.assumed(),
             &moves,
+            (&model, &totals),
             &diagnostics,
             &mut columns,
         ),
@@ -68,6 +76,7 @@ fn preview(
             label,
             analysis.config().metric,
             &analysis.moves(source, range.clone()),
+            (&model, &totals),
             &diagnostics,
             &mut columns,
         ),
@@ -84,9 +93,11 @@ pub fn preview_open(
     library: &dyn ProgramLibrary,
 ) -> Result<Value, String> {
     let execution = analysed.execution(library);
+    let times = analysed.times(library);
     preview(
         &analysed.analysis,
         &execution,
+        &times,
         &analysed.lines(),
         label,
         lines,
@@ -106,5 +117,6 @@ pub fn preview_file(
     let text_lines = TextLines::new(&source.text);
     let analysis = DocumentAnalysis::new(&text_lines, Arc::clone(&config), kind);
     let execution = execute_document(&text_lines, &config, kind, library, &config.execution, None);
-    preview(&analysis, &execution, &text_lines, label, lines)
+    let times = DocumentTimes::new(&text_lines, &execution, &config, kind);
+    preview(&analysis, &execution, &times, &text_lines, label, lines)
 }

@@ -82,6 +82,12 @@ pub fn hover(
         Some(summary) => format!("{summary}\n\n---\n\n{markdown}"),
         None => markdown,
     };
+    // The machining time of the block over its passes and the time before its first pass.
+    let times = analysed.times(library);
+    let markdown = match crate::ide::timing::time_summary(&times, line_idx) {
+        Some(time) => format!("{markdown}\n\n---\n\n{time}"),
+        None => markdown,
+    };
     Some(Hover {
         contents: HoverContents::Markup(MarkupContent {
             kind: MarkupKind::Markdown,

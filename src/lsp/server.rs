@@ -346,15 +346,15 @@ impl Shared {
         }
     }
 
-    /// Like [`Self::on_analysis`] for a request that shows the run of the program at `line`: when
-    /// the block there is not read in program order (after a label, a jump or a loop, or in a
-    /// subprogram), the run of the revision is made first without holding the analysis, so that
-    /// edits meanwhile are analysed and published; the job then finds it made.
+    /// Like [`Self::on_analysis`] for a request that shows the run of the program (at a line): the
+    /// run of the revision and its machining times (which every document needs, also one read in
+    /// program order) are made first without holding the analysis, so that edits meanwhile are
+    /// analysed and published; the job then finds them made.
     pub(super) async fn on_analysis_after_run<T: Send + 'static>(
         &self,
         uri: &Uri,
         library: Arc<dyn crate::analysis::library::ProgramLibrary>,
-        line: usize,
+        _line: usize,
         job: impl FnOnce(&Analysed) -> T + Send + 'static,
     ) -> Result<T> {
         if let Some(document) = self.documents.get(uri) {
@@ -363,13 +363,13 @@ impl Shared {
                 let run = {
                     let slot = document.catch_up();
                     slot.as_ref()
-                        .filter(|analysed| {
-                            analysed.revision == revision && analysed.may_show_run(line)
-                        })
+                        .filter(|analysed| analysed.revision == revision)
                         .map(|analysed| analysed.execution_job())
                 };
+                // The machining times (hover, status bar) need the run of every document, also
+                // one read in program order; making them makes the run.
                 if let Some(run) = run {
-                    run.run(library.as_ref());
+                    run.times(library.as_ref());
                 }
             })
             .await;

@@ -399,6 +399,12 @@ impl<'a, 's> Interpreter<'a, 's> {
             self.update_assumptions(control, engine, line, &block);
             if moved && !self.counting && !control.widening() {
                 self.record_move(control, engine, unit_index, pc, line, &block);
+            } else if self.options.dwell_moves
+                && !self.counting
+                && !control.widening()
+                && control.level().curve_table.is_none()
+            {
+                self.record_dwell(control, engine, unit_index, pc, line, &block);
             }
             if let Some(mark) = table {
                 self.table_end(control, engine, mark);
@@ -421,6 +427,21 @@ impl<'a, 's> Interpreter<'a, 's> {
         }
     }
 
+    /// Hands out the dwell of a `G4` block as a move of no axis, when the run is asked for them.
+    fn record_dwell(
+        &mut self,
+        control: &Control,
+        engine: &Engine<'a>,
+        unit_index: usize,
+        pc: usize,
+        line: &str,
+        block: &Block,
+    ) {
+        if let Some(dwell) = engine.describe_last_dwell(pc, line, block) {
+            self.hand_out(control, unit_index, pc, dwell);
+        }
+    }
+
     fn record_move(
         &mut self,
         control: &Control,
@@ -431,6 +452,11 @@ impl<'a, 's> Interpreter<'a, 's> {
         block: &Block,
     ) {
         let movement = engine.describe_last_move(pc, line, block);
+        self.hand_out(control, unit_index, pc, movement);
+    }
+
+    /// Hands a move of the current way to the sink.
+    fn hand_out(&mut self, control: &Control, unit_index: usize, pc: usize, movement: crate::analysis::Move) {
         let assumed = if control.assumed_axes == 0 {
             Vec::new()
         } else {
@@ -524,10 +550,14 @@ impl<'a, 's> Interpreter<'a, 's> {
             self.passes[0][pc] += 1;
             self.scratch.clear();
             let line = unit.line(pc);
-            if engine.step(line, &block, &mut self.scratch) && !self.counting {
+            let moved = engine.step(line, &block, &mut self.scratch);
+            let dwell = (!moved && self.options.dwell_moves)
+                .then(|| engine.describe_last_dwell(pc, line, &block))
+                .flatten();
+            if (moved || dwell.is_some()) && !self.counting {
                 let pass = self.pass_of(0, pc);
                 (self.sink)(ExecutedMove {
-                    movement: engine.describe_last_move(pc, line, &block),
+                    movement: dwell.unwrap_or_else(|| engine.describe_last_move(pc, line, &block)),
                     path: None,
                     stack: Arc::clone(&stack),
                     pass,
