@@ -55,7 +55,10 @@ impl DocumentTimes {
         match execution {
             DocumentExecution::Executed { run, .. } => {
                 for executed in run.moves.iter() {
-                    times.add(ExecutedMove::outer_line(executed), model.time_of(&executed.movement));
+                    times.add(
+                        ExecutedMove::outer_line(executed),
+                        model.time_of(&executed.movement),
+                    );
                 }
             }
             DocumentExecution::InOrder => {
@@ -216,7 +219,10 @@ mod tests {
         assert_eq!(times.totals_in(3..5).total_s, 14.5);
         let summary = time_summary(&times, 1).expect("a summary");
         assert!(summary.contains("**Time**: 12 s"), "{summary}");
-        assert!(summary.contains("starts after at least 0 s (1 earlier moves unknown)"), "{summary}");
+        assert!(
+            summary.contains("starts after at least 0 s (1 earlier moves unknown)"),
+            "{summary}"
+        );
     }
 
     #[test]

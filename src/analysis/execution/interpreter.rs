@@ -456,7 +456,13 @@ impl<'a, 's> Interpreter<'a, 's> {
     }
 
     /// Hands a move of the current way to the sink.
-    fn hand_out(&mut self, control: &Control, unit_index: usize, pc: usize, movement: crate::analysis::Move) {
+    fn hand_out(
+        &mut self,
+        control: &Control,
+        unit_index: usize,
+        pc: usize,
+        movement: crate::analysis::Move,
+    ) {
         let assumed = if control.assumed_axes == 0 {
             Vec::new()
         } else {

@@ -177,6 +177,14 @@ impl TimeModel {
         if movement.start.len() != movement.end.len() {
             return None;
         }
+        // An axis whose end is unknown moves by an unknown distance.
+        if movement
+            .uncertain
+            .iter()
+            .any(|name| !movement.end.iter().any(|(end, _)| end == name))
+        {
+            return None;
+        }
         let mut count = 0;
         for ((name, start), (end_name, end)) in movement.start.iter().zip(&movement.end) {
             if name != end_name {

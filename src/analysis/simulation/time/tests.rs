@@ -155,6 +155,9 @@ fn unknown_feed_speed_limit_or_start_make_the_time_unknown() {
     // A dwell in revolutions without a spindle speed.
     let dwell = times("G4 S10\n", &mill);
     assert_eq!(at(&dwell, 1), None);
+    // An incremental move of an axis whose position is unknown.
+    let unknown_end = times("G90 G0 X10\nG91 Y5\n", &mill);
+    assert_eq!(at(&unknown_end, 2), None);
     // After an unknown call the spindle speed is unknown.
     let call = times(
         "G90 G0 X0\nS1000 G95\nUNKNOWN_SUB\nG0 X0\nG1 X10 F0.1\n",
