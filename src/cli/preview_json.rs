@@ -85,15 +85,21 @@ fn write_seconds(out: &mut dyn Write, seconds: Option<f64>) -> io::Result<()> {
         }
         _ => return out.write_all(b"null"),
     };
-    let (whole, fraction) = (micros / 1_000_000, micros % 1_000_000);
+    let (whole, mut fraction) = (micros / 1_000_000, micros % 1_000_000);
+    write_integer(out, whole)?;
     if fraction == 0 {
-        return write!(out, "{whole}.0");
+        return out.write_all(b".0");
     }
-    let mut digits = format!("{fraction:06}");
-    while digits.ends_with('0') {
-        digits.pop();
+    let mut digits = [b'.', b'0', b'0', b'0', b'0', b'0', b'0'];
+    for place in (1..7).rev() {
+        digits[place] = b'0' + (fraction % 10) as u8;
+        fraction /= 10;
     }
-    write!(out, "{whole}.{digits}")
+    let mut length = 7;
+    while digits[length - 1] == b'0' {
+        length -= 1;
+    }
+    out.write_all(&digits[..length])
 }
 
 /// Writes the top-level `"time"` of the preview: the sums over the moves and dwells, and how many
@@ -162,8 +168,9 @@ pub(crate) fn write_executed_move(
 
 /// Writes the fields of one move, without the closing brace.
 fn write_move_fields(out: &mut dyn Write, movement: &Move, first: bool) -> io::Result<()> {
-    out.write_all(if first { b"\n  " } else { b",\n  " })?;
-    write!(out, "{{\"line\":{},\"block\":", movement.line + 1)?;
+    out.write_all(if first { b"\n  {\"line\":" } else { b",\n  {\"line\":" })?;
+    write_integer(out, movement.line as u64 + 1)?;
+    out.write_all(b",\"block\":")?;
     serde_json::to_writer(&mut *out, &movement.block_number)?;
     out.write_all(b",\"motion\":")?;
     serde_json::to_writer(&mut *out, movement.motion.as_ref())?;
@@ -263,18 +270,60 @@ fn write_number(out: &mut dyn Write, value: f64) -> io::Result<()> {
         let count = thousandths as i64;
         // The text below parses back to `value` only if `value` is the double nearest to it.
         if count as f64 / 1000.0 == value {
-            let sign = if count < 0 { "-" } else { "" };
             let magnitude = count.unsigned_abs();
             let (whole, fraction) = (magnitude / 1000, magnitude % 1000);
-            return match fraction {
-                0 => write!(out, "{sign}{whole}.0"),
-                _ if fraction % 100 == 0 => write!(out, "{sign}{whole}.{}", fraction / 100),
-                _ if fraction % 10 == 0 => write!(out, "{sign}{whole}.{:02}", fraction / 10),
-                _ => write!(out, "{sign}{whole}.{fraction:03}"),
+            // The digits are put together in a buffer: the formatting machinery of `write!` was a
+            // tenth of a preview's time.
+            let mut buffer = [0u8; 40];
+            let mut length = 0;
+            if count < 0 {
+                buffer[0] = b'-';
+                length = 1;
+            }
+            length += write_digits(&mut buffer[length..], whole);
+            buffer[length] = b'.';
+            length += 1;
+            let digits = [fraction / 100, fraction / 10 % 10, fraction % 10];
+            let shown = match fraction {
+                0 => 1,
+                _ if fraction % 100 == 0 => 1,
+                _ if fraction % 10 == 0 => 2,
+                _ => 3,
             };
+            for digit in &digits[..shown] {
+                buffer[length] = b'0' + *digit as u8;
+                length += 1;
+            }
+            return out.write_all(&buffer[..length]);
         }
     }
     serde_json::to_writer(out, &value).map_err(io::Error::from)
+}
+
+/// Writes the decimal digits of `value` at the start of `buffer` (which holds at least 20 bytes)
+/// and returns how many.
+fn write_digits(buffer: &mut [u8], mut value: u64) -> usize {
+    let mut reversed = [0u8; 20];
+    let mut count = 0;
+    loop {
+        reversed[count] = b'0' + (value % 10) as u8;
+        count += 1;
+        value /= 10;
+        if value == 0 {
+            break;
+        }
+    }
+    for (index, digit) in reversed[..count].iter().rev().enumerate() {
+        buffer[index] = *digit;
+    }
+    count
+}
+
+/// Writes an unsigned integer without the formatting machinery.
+fn write_integer(out: &mut dyn Write, value: u64) -> io::Result<()> {
+    let mut buffer = [0u8; 20];
+    let length = write_digits(&mut buffer, value);
+    out.write_all(&buffer[..length])
 }
 
 #[cfg(test)]

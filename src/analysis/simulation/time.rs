@@ -79,9 +79,14 @@ pub struct TimeModel {
 
 /// The change of one axis in a move: its configuration and the distance (radius on a transverse
 /// axis, degrees on a rotary one).
-#[derive(Debug, Clone, Copy)]
-pub(crate) struct AxisDelta<'a> {
-    axis: &'a AxisTiming,
+#[derive(Debug, Clone, Copy, Default)]
+pub(crate) struct AxisDelta {
+    /// The axis's index in the configuration.
+    index: usize,
+    geometry: bool,
+    rotary: bool,
+    max_velocity: f64,
+    max_acceleration: Option<f64>,
     delta: f64,
 }
 
@@ -145,16 +150,16 @@ impl TimeModel {
     }
 
     fn motion_seconds(&self, movement: &Move, rapid: bool) -> Option<f64> {
-        let mut deltas = [None; 16];
+        let mut deltas = [AxisDelta::default(); 16];
         let count = self.deltas(movement, &mut deltas)?;
-        let deltas: Vec<AxisDelta> = deltas[..count].iter().flatten().copied().collect();
+        let deltas = &deltas[..count];
         if rapid {
             return match self.model {
-                TimeModelKind::Base => Some(rapid_minutes(&deltas) * 60.0),
-                TimeModelKind::Trapezoid => trapezoid::seconds(&deltas, None, false),
+                TimeModelKind::Base => Some(rapid_minutes(deltas) * 60.0),
+                TimeModelKind::Trapezoid => trapezoid::seconds(deltas, None, false),
             };
         }
-        let path = self.path(movement, &deltas)?;
+        let path = self.path(movement, deltas)?;
         let minutes = feed_minutes(movement, &path, self.transverse.as_deref())?;
         match self.model {
             TimeModelKind::Base => Some(minutes * 60.0),
@@ -162,18 +167,14 @@ impl TimeModel {
             TimeModelKind::Trapezoid => {
                 // The programmed feed, as the base model reads it, is the velocity to reach.
                 let feed = path.length / minutes;
-                trapezoid::seconds(&deltas, Some((path.length, feed)), movement.arc.is_some())
+                trapezoid::seconds(deltas, Some((path.length, feed)), movement.arc.is_some())
             }
         }
     }
 
     /// The distance each moved axis travels; `None` when an axis's start or end is unknown. At most
     /// 16 axes are followed; a move of more is unknown.
-    fn deltas<'a>(
-        &'a self,
-        movement: &Move,
-        out: &mut [Option<AxisDelta<'a>>; 16],
-    ) -> Option<usize> {
+    fn deltas(&self, movement: &Move, out: &mut [AxisDelta; 16]) -> Option<usize> {
         if movement.start.len() != movement.end.len() {
             return None;
         }
@@ -190,7 +191,8 @@ impl TimeModel {
             if name != end_name {
                 return None;
             }
-            let axis = self.axes.iter().find(|axis| axis.name == name.as_ref())?;
+            let index = self.axes.iter().position(|axis| axis.name == name.as_ref())?;
+            let axis = &self.axes[index];
             let mut delta = (end - start).abs();
             if axis.kind == AxisKind::Transverse && movement.transverse_as_diameter {
                 delta /= 2.0;
@@ -198,7 +200,14 @@ impl TimeModel {
             if delta == 0.0 {
                 continue;
             }
-            *out.get_mut(count)? = Some(AxisDelta { axis, delta });
+            *out.get_mut(count)? = AxisDelta {
+                index,
+                geometry: axis.geometry,
+                rotary: matches!(axis.kind, AxisKind::Rotary | AxisKind::Modulo),
+                max_velocity: axis.max_velocity,
+                max_acceleration: axis.max_acceleration,
+                delta,
+            };
             count += 1;
         }
         Some(count)
@@ -209,7 +218,7 @@ impl TimeModel {
     fn path(&self, movement: &Move, deltas: &[AxisDelta]) -> Option<Path> {
         let geometry_squares: f64 = deltas
             .iter()
-            .filter(|delta| delta.axis.geometry)
+            .filter(|delta| delta.geometry)
             .map(|delta| delta.delta * delta.delta)
             .sum();
         if let Some(arc) = &movement.arc {
@@ -218,9 +227,10 @@ impl TimeModel {
             let lead_squares: f64 = deltas
                 .iter()
                 .filter(|delta| {
-                    delta.axis.geometry
-                        && !delta.axis.name.eq_ignore_ascii_case(first)
-                        && !delta.axis.name.eq_ignore_ascii_case(second)
+                    let name = &self.axes[delta.index].name;
+                    delta.geometry
+                        && !name.eq_ignore_ascii_case(first)
+                        && !name.eq_ignore_ascii_case(second)
                 })
                 .map(|delta| delta.delta * delta.delta)
                 .sum();
@@ -241,9 +251,7 @@ impl TimeModel {
             });
         }
         let other_squares: f64 = deltas.iter().map(|delta| delta.delta * delta.delta).sum();
-        let degrees = deltas
-            .iter()
-            .any(|delta| matches!(delta.axis.kind, AxisKind::Rotary | AxisKind::Modulo));
+        let degrees = deltas.iter().any(|delta| delta.rotary);
         Some(Path {
             length: other_squares.sqrt(),
             degrees,
@@ -262,7 +270,7 @@ struct Path {
 fn rapid_minutes(deltas: &[AxisDelta]) -> f64 {
     deltas
         .iter()
-        .map(|delta| delta.delta / delta.axis.max_velocity)
+        .map(|delta| delta.delta / delta.max_velocity)
         .fold(0.0, f64::max)
 }
 

@@ -26,8 +26,8 @@ pub(super) fn seconds(deltas: &[AxisDelta], feed: Option<(f64, f64)>, arc: bool)
     let mut acceleration = f64::INFINITY;
     for delta in deltas {
         let share = if arc { 1.0 } else { length / delta.delta };
-        velocity = velocity.min(delta.axis.max_velocity / 60.0 * share);
-        acceleration = acceleration.min(delta.axis.max_acceleration? * share);
+        velocity = velocity.min(delta.max_velocity / 60.0 * share);
+        acceleration = acceleration.min(delta.max_acceleration? * share);
     }
     if !(velocity.is_finite() && acceleration.is_finite() && velocity > 0.0) {
         return None;
