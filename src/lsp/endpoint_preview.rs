@@ -82,7 +82,24 @@ fn preview(
         ),
     }
     .map_err(|error| format!("cannot write the preview: {error}"))?;
-    serde_json::from_slice(&json).map_err(|error| format!("cannot read the preview back: {error}"))
+    let mut value: Value = serde_json::from_slice(&json)
+        .map_err(|error| format!("cannot read the preview back: {error}"))?;
+    // `time` sums the lines asked for; `program_time` is the whole document's, the same for every
+    // range, so that a client fetching ranges whose ends overlap needs not add them up.
+    let whole = times.totals();
+    if let Some(object) = value.as_object_mut() {
+        object.insert(
+            "program_time".to_string(),
+            serde_json::json!({
+                "total_s": whole.total_s,
+                "feed_s": whole.feed_s,
+                "rapid_s": whole.rapid_s,
+                "dwell_s": whole.dwell_s,
+                "unknown_moves": whole.unknown_moves,
+            }),
+        );
+    }
+    Ok(value)
 }
 
 /// The preview of an open document, from its up-to-date analysis.
