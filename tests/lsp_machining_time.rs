@@ -23,14 +23,17 @@ async fn start(folder: &std::path::Path) -> TestClient {
 }
 
 fn seconds(value: &Value) -> f64 {
-    value.as_f64().unwrap_or_else(|| panic!("a number: {value}"))
+    value
+        .as_f64()
+        .unwrap_or_else(|| panic!("a number: {value}"))
 }
 
 #[tokio::test]
 async fn a_program_in_order_shows_block_times_and_its_total() {
     let folder = temp_folder("machining-time-in-order");
     // T116 of the reference: 12 s, 9.4248 s and a dwell of 2.5 s after a first move of unknown time.
-    let text = "N10 G17 G90 G94 G1 X0 Y0 F500\nN20 X100\nN30 G3 X120 Y20 I0 J20 F200\nN40 G4 F2.5\n";
+    let text =
+        "N10 G17 G90 G94 G1 X0 Y0 F500\nN20 X100\nN30 G3 X120 Y20 I0 J20 F200\nN40 G4 F2.5\n";
     std::fs::write(folder.join("T116.MPF"), text).unwrap();
     let mut client = start(&folder).await;
     let uri = file_uri(&folder.join("T116.MPF"));
@@ -47,14 +50,23 @@ async fn a_program_in_order_shows_block_times_and_its_total() {
         .request("sinumerik/modalState", json!({"uri": uri, "line": 1}))
         .await
         .expect("a state");
-    assert!((seconds(&state["time"]["total_s"]) - 23.9248).abs() < 1e-3, "{state}");
+    assert!(
+        (seconds(&state["time"]["total_s"]) - 23.9248).abs() < 1e-3,
+        "{state}"
+    );
     assert_eq!(state["time"]["unknown_moves"], 1, "{state}");
     let range = client
         .preview(json!({"uri": uri, "startLine": 1, "endLine": 1}))
         .await
         .expect("a preview");
-    assert!((seconds(&range["time"]["total_s"]) - 12.0).abs() < 1e-6, "{range}");
-    assert!((seconds(&range["program_time"]["total_s"]) - 23.9248).abs() < 1e-3, "{range}");
+    assert!(
+        (seconds(&range["time"]["total_s"]) - 12.0).abs() < 1e-6,
+        "{range}"
+    );
+    assert!(
+        (seconds(&range["program_time"]["total_s"]) - 23.9248).abs() < 1e-3,
+        "{range}"
+    );
     assert_eq!(range["moves"][0]["time_s"], 12.0, "{range}");
     client.shutdown().await;
 }
@@ -73,10 +85,23 @@ async fn a_loop_block_counts_every_pass() {
     let dwell = client.hover(&uri, 4, 1).await;
     assert!(dwell.contains("**Time**: 1.5 s"), "{dwell}");
     assert!(dwell.contains("starts after at least 1 s"), "{dwell}");
-    let preview = client.preview(json!({"uri": uri})).await.expect("a preview");
+    let preview = client
+        .preview(json!({"uri": uri}))
+        .await
+        .expect("a preview");
     // The dwells count in the time but are not moves of the path.
-    assert_eq!(preview["moves"].as_array().map(Vec::len), Some(4), "{preview}");
-    assert!((seconds(&preview["time"]["dwell_s"]) - 1.5).abs() < 1e-9, "{preview}");
-    assert!((seconds(&preview["time"]["total_s"]) - 4.5).abs() < 1e-9, "{preview}");
+    assert_eq!(
+        preview["moves"].as_array().map(Vec::len),
+        Some(4),
+        "{preview}"
+    );
+    assert!(
+        (seconds(&preview["time"]["dwell_s"]) - 1.5).abs() < 1e-9,
+        "{preview}"
+    );
+    assert!(
+        (seconds(&preview["time"]["total_s"]) - 4.5).abs() < 1e-9,
+        "{preview}"
+    );
     client.shutdown().await;
 }

@@ -178,6 +178,8 @@ pub(crate) fn write_preview_json(
 }
 
 /// Like [`write_preview_json`] for executed moves, with what was assumed about the entry state.
+// Each argument is one part of the document (header, moves, times, findings, column conversion).
+#[allow(clippy::too_many_arguments)]
 pub(crate) fn write_executed_preview_json(
     out: &mut dyn Write,
     file: &str,

@@ -168,7 +168,11 @@ pub(crate) fn write_executed_move(
 
 /// Writes the fields of one move, without the closing brace.
 fn write_move_fields(out: &mut dyn Write, movement: &Move, first: bool) -> io::Result<()> {
-    out.write_all(if first { b"\n  {\"line\":" } else { b",\n  {\"line\":" })?;
+    out.write_all(if first {
+        b"\n  {\"line\":"
+    } else {
+        b",\n  {\"line\":"
+    })?;
     write_integer(out, movement.line as u64 + 1)?;
     out.write_all(b",\"block\":")?;
     serde_json::to_writer(&mut *out, &movement.block_number)?;

@@ -191,7 +191,10 @@ impl TimeModel {
             if name != end_name {
                 return None;
             }
-            let index = self.axes.iter().position(|axis| axis.name == name.as_ref())?;
+            let index = self
+                .axes
+                .iter()
+                .position(|axis| axis.name == name.as_ref())?;
             let axis = &self.axes[index];
             let mut delta = (end - start).abs();
             if axis.kind == AxisKind::Transverse && movement.transverse_as_diameter {
