@@ -8,17 +8,30 @@ mod lsp_client;
 use lsp_client::{file_uri, temp_folder, TestClient};
 use serde_json::{json, Value};
 
+/// A server on `folder` with the indexing finished (the times are kept per library generation,
+/// which the finished index advances).
 async fn start(folder: &std::path::Path) -> TestClient {
     let mut client = TestClient::in_process();
     let folder_uri = file_uri(folder);
     client
         .request(
             "initialize",
-            json!({"processId": null, "rootUri": folder_uri, "capabilities": {}}),
+            json!({
+                "processId": null,
+                "rootUri": folder_uri,
+                "workspaceFolders": [{"uri": folder_uri, "name": "fixture"}],
+                "capabilities": {"window": {"workDoneProgress": true}}
+            }),
         )
         .await
         .expect("initialize succeeds");
     client.notify("initialized", json!({})).await;
+    loop {
+        let params = client.notification("$/progress", |_| true).await;
+        if params["value"]["kind"] == "end" {
+            break;
+        }
+    }
     client
 }
 
@@ -38,6 +51,10 @@ async fn a_program_in_order_shows_block_times_and_its_total() {
     let mut client = start(&folder).await;
     let uri = file_uri(&folder.join("T116.MPF"));
     client.open(&uri, 1, text).await;
+    let state = client
+        .request("sinumerik/modalState", json!({"uri": uri, "line": 1}))
+        .await
+        .expect("a state");
     let hover = client.hover(&uri, 2, 1).await;
     assert!(hover.contains("**Time**: 9.425 s"), "{hover}");
     assert!(
@@ -46,10 +63,6 @@ async fn a_program_in_order_shows_block_times_and_its_total() {
     );
     let dwell = client.hover(&uri, 3, 1).await;
     assert!(dwell.contains("**Time**: 2.5 s"), "{dwell}");
-    let state = client
-        .request("sinumerik/modalState", json!({"uri": uri, "line": 1}))
-        .await
-        .expect("a state");
     assert!(
         (seconds(&state["time"]["total_s"]) - 23.9248).abs() < 1e-3,
         "{state}"
@@ -79,6 +92,10 @@ async fn a_loop_block_counts_every_pass() {
     let mut client = start(&folder).await;
     let uri = file_uri(&folder.join("LOOP.MPF"));
     client.open(&uri, 1, text).await;
+    client
+        .request("sinumerik/modalState", json!({"uri": uri, "line": 3}))
+        .await
+        .expect("a state");
     let hover = client.hover(&uri, 3, 1).await;
     // Three passes of 10 mm at 600 mm/min.
     assert!(hover.contains("**Time**: 3 s"), "{hover}");

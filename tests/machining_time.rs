@@ -184,3 +184,71 @@ fn the_time_of_an_inserted_rounding_t121() {
     let total = json["time"]["total_s"].as_f64().expect("a total");
     assert!((total - 9.0425).abs() < 1e-3, "{total}");
 }
+
+/// The server's run hands out the dwells (`ExecutionOptions::dwell_moves`): a run resumed after an
+/// edit must still equal a fresh one, dwells included.
+#[test]
+fn a_run_with_dwells_resumed_after_edits_equals_a_fresh_run() {
+    use sinumerik_lsp::analysis::execution::entry::RunSetup;
+    use sinumerik_lsp::analysis::execution::{run_recorded, ExecutionOptions, RecordedRun};
+    use sinumerik_lsp::analysis::library::NoLibrary;
+    use sinumerik_lsp::analysis::ProgramKind;
+    use sinumerik_lsp::config::MachineConfig;
+    use std::sync::Arc;
+
+    let options = ExecutionOptions {
+        dwell_moves: true,
+        ..ExecutionOptions::default()
+    };
+    let run = |text: &str, earlier: Option<&RecordedRun>| {
+        run_recorded(
+            Arc::from(text),
+            &MachineConfig::mill(),
+            ProgramKind::Main,
+            &NoLibrary,
+            &options,
+            &RunSetup {
+                entry: None,
+                record_first_passes: true,
+            },
+            earlier,
+        )
+    };
+    let mut lines: Vec<String> = vec!["G90 G0 X0 Y0".into(), "G1 F600".into()];
+    for group in 0..300 {
+        lines.push(format!("FOR R1=1 TO {}", 2 + group % 3));
+        lines.push(format!("G1 X=R1*{}", 1 + group % 7));
+        lines.push(format!("G4 F{}", group % 5));
+        lines.push("ENDFOR".into());
+        lines.push(format!("Y{group}"));
+    }
+    lines.push("M30".into());
+    let mut earlier = run(&lines.join("\n"), None);
+    let dwells = earlier
+        .moves
+        .iter()
+        .filter(|executed| executed.movement.timing.dwell.is_some())
+        .count();
+    assert!(dwells > 600, "{dwells} dwells");
+    // Edits of plain lines: a dwell's time, a coordinate; each run resumed from the one before.
+    for step in 0..12 {
+        let index = 2 + 5 * (step * 37 % 300) + if step % 2 == 0 { 2 } else { 4 };
+        lines[index] = if step % 2 == 0 {
+            format!("G4 F{}.5", step)
+        } else {
+            format!("Y{}", step * 3)
+        };
+        let text = lines.join("\n");
+        let again = run(&text, Some(&earlier));
+        let fresh = run(&text, None);
+        assert!(
+            *again.moves == *fresh.moves,
+            "edit {step}: the resumed run's moves differ from a fresh run's"
+        );
+        assert_eq!(
+            again.execution.findings, fresh.execution.findings,
+            "edit {step}"
+        );
+        earlier = again;
+    }
+}

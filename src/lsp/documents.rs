@@ -158,6 +158,34 @@ impl Analysed {
         self.execution_job().times(library)
     }
 
+    /// Whether a feature at `line` may show the run rather than the reading in program order: the
+    /// block there follows a label, a jump or a loop, or the document is a subprogram.
+    pub fn may_show_run(&self, line: usize) -> bool {
+        if self.analysis.kind() == crate::analysis::ProgramKind::Subprogram {
+            return true;
+        }
+        if line >= self.rope.len_lines() {
+            return false;
+        }
+        let report = self.analysis.block_report(&self.lines(), line);
+        report.before.flow_uncertain || report.after.flow_uncertain
+    }
+
+    /// The machining times of this revision if a request already made them (the status bar's, the
+    /// toolpath's): the hover shows them without reading a large document again on every edit.
+    pub fn cached_times(
+        &self,
+        library: &dyn ProgramLibrary,
+    ) -> Option<Arc<crate::ide::timing::DocumentTimes>> {
+        let generation = library.generation();
+        lock(&self.times)
+            .as_ref()
+            .filter(|(revision, run_generation, _)| {
+                *revision == self.revision && *run_generation == generation
+            })
+            .map(|(_, _, times)| Arc::clone(times))
+    }
+
     /// What running this revision needs, to run it after letting go of the analysis.
     pub fn execution_job(&self) -> ExecutionJob {
         ExecutionJob {

@@ -9,7 +9,7 @@ use crate::cli::source_file::read_source_file;
 use crate::config::MachineConfig;
 use crate::ide::execution::{execute_document, DocumentExecution};
 use crate::ide::timing::DocumentTimes;
-use crate::ide::timing::TimeModel;
+use crate::ide::timing::{TimeModel, TimeTotals};
 use crate::lsp::documents::Analysed;
 use serde_json::Value;
 use std::path::Path;
@@ -36,16 +36,15 @@ impl LineSelection {
 fn preview(
     analysis: &DocumentAnalysis,
     execution: &DocumentExecution,
-    times: &DocumentTimes,
+    times: Option<&DocumentTimes>,
     source: &dyn LineSource,
     label: &str,
     lines: LineSelection,
 ) -> Result<Value, String> {
     let range = lines.range(source.line_count());
-    // Each move's time, and the totals of the lines asked for (with their dwells): the sum over
-    // the ranges of a whole document is the document's total.
+    // Each move's time, and the totals of the lines asked for: from the document's times (with the
+    // dwells) when they are made, else from the moves listed.
     let model = TimeModel::new(analysis.config());
-    let totals = times.totals_in(range.clone());
     let diagnostics = analysis.diagnostics();
     let first = diagnostics.partition_point(|item| item.line < range.start);
     let last = diagnostics.partition_point(|item| item.line < range.end);
@@ -60,7 +59,23 @@ fn preview(
     diagnostics.sort_by_key(|item| (item.line, item.diagnostic.span.start()));
     let mut json = Vec::new();
     let mut columns = |line_idx: usize, span| line_columns(&source.line(line_idx), span);
-    match execution.moves_in(range.clone()) {
+    let executed = execution.moves_in(range.clone());
+    let in_order = match executed {
+        Some(_) => Vec::new(),
+        None => analysis.moves(source, range.clone()),
+    };
+    let totals = match times {
+        Some(times) => times.totals_in(range.clone()),
+        None => {
+            let mut totals = TimeTotals::default();
+            let listed = executed.iter().flatten().map(|executed| &executed.movement);
+            for movement in listed.chain(in_order.iter()) {
+                totals.add(model.time_of(movement));
+            }
+            totals
+        }
+    };
+    match executed {
         Some(moves) => write_executed_preview_json(
             &mut json,
             label,
@@ -75,7 +90,7 @@ fn preview(
             &mut json,
             label,
             analysis.config().metric,
-            &analysis.moves(source, range.clone()),
+            &in_order,
             (&model, &totals),
             &diagnostics,
             &mut columns,
@@ -86,8 +101,11 @@ fn preview(
         .map_err(|error| format!("cannot read the preview back: {error}"))?;
     // `time` sums the lines asked for; `program_time` is the whole document's, the same for every
     // range, so that a client fetching ranges whose ends overlap needs not add them up.
+    let (Some(times), Some(object)) = (times, value.as_object_mut()) else {
+        return Ok(value);
+    };
     let whole = times.totals();
-    if let Some(object) = value.as_object_mut() {
+    {
         object.insert(
             "program_time".to_string(),
             serde_json::json!({
@@ -110,11 +128,18 @@ pub fn preview_open(
     library: &dyn ProgramLibrary,
 ) -> Result<Value, String> {
     let execution = analysed.execution(library);
-    let times = analysed.times(library);
+    // The document's times are made by a request from its first line (where a client's load of the
+    // toolpath starts) or found made; a request for a few lines in the middle of a large document
+    // after each edit does not read the whole program again.
+    let times = if lines.start.unwrap_or(0) == 0 {
+        Some(analysed.times(library))
+    } else {
+        analysed.cached_times(library)
+    };
     preview(
         &analysed.analysis,
         &execution,
-        &times,
+        times.as_deref(),
         &analysed.lines(),
         label,
         lines,
@@ -135,5 +160,12 @@ pub fn preview_file(
     let analysis = DocumentAnalysis::new(&text_lines, Arc::clone(&config), kind);
     let execution = execute_document(&text_lines, &config, kind, library, &config.execution, None);
     let times = DocumentTimes::new(&text_lines, &execution, &config, kind);
-    preview(&analysis, &execution, &times, &text_lines, label, lines)
+    preview(
+        &analysis,
+        &execution,
+        Some(&times),
+        &text_lines,
+        label,
+        lines,
+    )
 }
