@@ -257,6 +257,7 @@ codes! {
     AngleDirectionMismatch = "A240", Warning, "A straight line defined by `ANG` and one end coordinate whose angle points away from that coordinate: the control rejects the block (reference §14.6, T109; the alarm is not documented).";
     AngleNoSolution = "A241", Error, "A contour definition by angles that has no solution: `ANG` parallel to the only given axis, or two lines of a two-block definition that are parallel (reference §14.6).";
     RoundingAndChamfer = "A242", Information, "A block that programs both a rounding and a chamfer (`RND` with `CHR` or `CHF`): only the rounding is inserted (reference §14.1).";
+    FeedNotReprogrammed = "A250", Error, "A feed move after a change between G93, G94 and G95 without a new F: the control does not reuse the old feed (alarm 10860); its machining time is unknown.";
     EndlessLoop = "E401", Warning, "A loop or jump cycle that the program never leaves: its state repeats unchanged, so the control would run it forever.";
     ExecutionBudgetUsed = "E402", Information, "The configured budget of executed blocks is used up: the rest of the program is read in program order and its values are uncertain.";
     LoopPassLimit = "E403", Information, "A loop that ran more passes than the configured limit: what its body changes is unknown after it.";

@@ -23,6 +23,7 @@ mod indirect_axes;
 mod join;
 mod macros;
 pub use contours::{ContourRequest, CornerElement, OpenAngle};
+pub mod spindle;
 pub(crate) use macros::macro_definition;
 
 /// A block that moves axes.
@@ -61,6 +62,8 @@ pub struct Move {
     pub contour: Option<Box<ContourRequest>>,
     /// For a chamfer or rounding the corner stage inserted: `"RND"`, `"CHF"` or `"CHR"`.
     pub inserted: Option<&'static str>,
+    /// What the machining time of the move depends on besides its geometry (`engine/spindle.rs`).
+    pub timing: spindle::Timing,
 }
 
 /// The circle a G2/G3 block follows.
@@ -158,6 +161,8 @@ pub struct Engine<'a> {
     /// Set by the interpreter for one block whose call it runs itself (the callee was found): the call
     /// then forgets nothing, since the callee's own blocks say what changes.
     call_followed: bool,
+    /// The dwell of the block last applied, if it was a `G4` block.
+    last_dwell: Option<spindle::Dwell>,
 }
 
 /// What the engine remembers about the program beyond the modal state: its macros and what the
@@ -271,6 +276,7 @@ impl<'a> Engine<'a> {
             axes: AxisLookup::new(config),
             executing: false,
             call_followed: false,
+            last_dwell: None,
         }
     }
 
@@ -345,6 +351,7 @@ impl<'a> Engine<'a> {
             axes,
             executing,
             call_followed,
+            last_dwell,
         } = Engine::new(config);
         Engine {
             config,
@@ -365,6 +372,7 @@ impl<'a> Engine<'a> {
             axes,
             executing,
             call_followed,
+            last_dwell,
         }
     }
 
@@ -409,6 +417,7 @@ impl<'a> Engine<'a> {
     fn forget_what_a_call_may_change(&mut self, frame_data_changed: bool, locals: bool) {
         // The callee may have programmed a feed, so a later feed move without F is not reported.
         self.missing_feed_reported = true;
+        self.state.spindle.forget();
         self.state.forget_positions();
         if locals {
             self.state.variables.forget_all();
@@ -551,6 +560,7 @@ impl<'a> Engine<'a> {
     fn step_block(&mut self, line: &str, block: &Block, diagnostics: &mut Vec<Diagnostic>) -> bool {
         self.last_arc = None;
         self.last_contour = None;
+        self.last_dwell = None;
         let call_followed = std::mem::take(&mut self.call_followed);
         if block.is_header {
             return false;
@@ -579,6 +589,7 @@ impl<'a> Engine<'a> {
         let mut offset_selected = false;
         let units_before = self.state.groups[13];
         let mut unit_word = None;
+        let feed_type_before = self.state.groups[15];
         self.written.iter_mut().for_each(|kind| *kind = 0);
         for statement in statements {
             if let Statement::GCode { code, span } = statement {
@@ -919,6 +930,8 @@ impl<'a> Engine<'a> {
         }
         self.last_arc = arc;
         self.start_positions = start_positions;
+        let feed_move = moves_axes && matches!(motion.as_ref(), "G1" | "G2" | "G3" | "CIP" | "CT");
+        self.observe_timing(line, block, feed_type_before, feed_move, diagnostics);
         if forget_after {
             self.forget_what_a_call_may_change(frame_data_changed, locals_may_change);
         }
@@ -1835,7 +1848,43 @@ impl<'a> Engine<'a> {
             cycle: None,
             contour: self.last_contour.clone(),
             inserted: None,
+            timing: self.timing(),
         }
+    }
+
+    /// The dwell of the block last applied with [`Engine::step`], if it was a `G4` block: a move of
+    /// no axis (`start` and `end` empty, motion `G4`) whose `timing.dwell` holds the time. Consumers
+    /// of the path never see it unless they ask for it (`ExecutionOptions::dwell_moves`).
+    pub fn describe_last_dwell(
+        &self,
+        line_index: usize,
+        line: &str,
+        block: &Block,
+    ) -> Option<Move> {
+        let dwell = self.last_dwell?;
+        let block_number = block
+            .number
+            .map(|number| line[number.span.start()..number.span.end()].to_string());
+        Some(Move {
+            line: line_index,
+            block_number,
+            motion: Cow::Borrowed("G4"),
+            start: Vec::new(),
+            end: Vec::new(),
+            machine: None,
+            feed: self.state.feed,
+            uncertain: Vec::new(),
+            arc: None,
+            plane: self.state.plane_axis_names(),
+            transverse_as_diameter: self.state.shows_diameter() == Some(true),
+            timing: spindle::Timing {
+                dwell: Some(dwell),
+                ..self.timing()
+            },
+            cycle: None,
+            contour: None,
+            inserted: None,
+        })
     }
 }
 

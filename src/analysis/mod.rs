@@ -136,6 +136,25 @@ pub fn visit_moves(
     for_each_move(text, config, kind, |movement| visit(&movement))
 }
 
+/// Like [`visit_moves`], also handing over the move of each dwell block (`G4`, see
+/// [`Engine::describe_last_dwell`]), in program order: what the machining time of a program read in
+/// program order needs.
+pub fn visit_moves_and_dwells(
+    text: &str,
+    config: &MachineConfig,
+    kind: ProgramKind,
+    mut visit: impl FnMut(&Move),
+) -> Vec<LineDiagnostic> {
+    let mut engine = new_engine(text, config, kind);
+    crate::syntax::visit_blocks(text, config, |line_index, line, block, findings| {
+        if engine.step(line, block, findings) {
+            visit(&engine.describe_last_move(line_index, line, block));
+        } else if let Some(dwell) = engine.describe_last_dwell(line_index, line, block) {
+            visit(&dwell);
+        }
+    })
+}
+
 /// Like [`visit_moves`], handing each move over by value, so that a caller that keeps them (as
 /// [`analyze_program`] does) takes the move as built instead of a copy of it.
 fn for_each_move(

@@ -57,6 +57,8 @@ pub struct ModalState {
     pub chamfer_feed_modal: Option<f64>,
     /// The first line of a two-block contour definition by angles, waiting for its second line.
     pub open_angle: Option<crate::analysis::engine::OpenAngle>,
+    /// The master spindle and the feed type's state for the machining time.
+    pub spindle: crate::analysis::engine::spindle::SpindleState,
 }
 
 /// The pole of a plane.
@@ -135,6 +137,7 @@ impl ModalState {
             rounding_modal: Some(0.0),
             chamfer_feed_modal: Some(0.0),
             open_angle: None,
+            spindle: Default::default(),
         };
         for name in SIEMENS_RESET {
             if let Some(code) = gcode_by_written_name(name) {

@@ -8,6 +8,7 @@ use super::source_file::read_source_file;
 use super::{EXIT_ERRORS_FOUND, EXIT_OK, EXIT_TROUBLE};
 use crate::analysis::execution::{execute, ExecutedMove, ExecutionOptions};
 use crate::analysis::library::ProgramLibrary;
+use crate::analysis::simulation::time::{TimeModel, TimeTotals};
 use crate::analysis::{diagnose_program, Move, ProgramKind};
 use crate::config::{discover_config_file, load_config_file, MachineConfig};
 use crate::diagnostics::{LineDiagnostic, Severity, Span};
@@ -50,7 +51,11 @@ pub(crate) fn run_preview(
     // only when asked.
     let library =
         program_files.library_for(&options.path, config_path.as_deref().and_then(Path::parent));
-    let execution_options = config.execution.clone();
+    // The JSON and CSV count the dwells in the time; no format lists them among the moves.
+    let execution_options = ExecutionOptions {
+        dwell_moves: options.format != PreviewFormat::Svg,
+        ..config.execution.clone()
+    };
     let run = |visit: &mut dyn FnMut(ExecutedMove)| {
         run_program(
             &source.text,
@@ -61,6 +66,8 @@ pub(crate) fn run_preview(
             visit,
         )
     };
+    let model = TimeModel::new(&config);
+    let mut totals = TimeTotals::default();
     let diagnostics = match options.format {
         PreviewFormat::Json => {
             let mut out = io::BufWriter::with_capacity(1 << 16, stdout);
@@ -75,14 +82,22 @@ pub(crate) fn run_preview(
             let mut first = true;
             let mut written = Ok(());
             let diagnostics = run(&mut |movement| {
-                if written.is_ok() {
-                    written = preview_json::write_executed_move(&mut out, &movement, first, &file);
+                let time = model.time_of(&movement.movement);
+                totals.add(time);
+                if written.is_ok() && movement.movement.timing.dwell.is_none() {
+                    written = preview_json::write_executed_move(
+                        &mut out,
+                        &movement,
+                        first,
+                        &file,
+                        time.seconds,
+                    );
                     first = false;
                 }
             });
             written?;
             let lines = ProgramLines::new(&source.text);
-            preview_json::write_footer(&mut out, &diagnostics, &|item| {
+            preview_json::write_footer(&mut out, &totals, &diagnostics, &|item| {
                 lines.columns(item.line, item.diagnostic.span)
             })?;
             out.flush()?;
@@ -93,8 +108,9 @@ pub(crate) fn run_preview(
             write_csv_header(&mut out, &config)?;
             let mut written = Ok(());
             let diagnostics = run(&mut |movement| {
-                if written.is_ok() {
-                    written = write_csv_row(&mut out, &config, &movement);
+                if written.is_ok() && movement.movement.timing.dwell.is_none() {
+                    let time = model.time_of(&movement.movement);
+                    written = write_csv_row(&mut out, &config, &movement, time.seconds);
                 }
             });
             written?;
@@ -140,40 +156,47 @@ pub(crate) fn run_program(
 /// The JSON document of `preview` for `moves` and `diagnostics` of the program `file`, as the language
 /// server's `sinumerik.endpointPreview` returns it; `columns` gives the 1-based character columns of
 /// a span in a 0-based line.
+/// `timing` times each move and gives the totals of the lines shown.
 pub(crate) fn write_preview_json(
     out: &mut dyn Write,
     file: &str,
     metric: bool,
     moves: &[Move],
+    timing: (&TimeModel, &TimeTotals),
     diagnostics: &[LineDiagnostic],
     columns: &mut dyn FnMut(usize, Span) -> (usize, usize),
 ) -> io::Result<()> {
     preview_json::write_header(out, file, metric)?;
     for (index, movement) in moves.iter().enumerate() {
-        preview_json::write_move(out, movement, index == 0)?;
+        let time = timing.0.time_of(movement).seconds;
+        preview_json::write_move(out, movement, index == 0, time)?;
     }
     let columns = std::cell::RefCell::new(columns);
-    preview_json::write_footer(out, diagnostics, &|item| {
+    preview_json::write_footer(out, timing.1, diagnostics, &|item| {
         (columns.borrow_mut())(item.line, item.diagnostic.span)
     })
 }
 
 /// Like [`write_preview_json`] for executed moves, with what was assumed about the entry state.
+// Each argument is one part of the document (header, moves, times, findings, column conversion).
+#[allow(clippy::too_many_arguments)]
 pub(crate) fn write_executed_preview_json(
     out: &mut dyn Write,
     file: &str,
     metric: bool,
     assumed: &[(&'static str, String)],
     moves: &[&ExecutedMove],
+    timing: (&TimeModel, &TimeTotals),
     diagnostics: &[LineDiagnostic],
     columns: &mut dyn FnMut(usize, Span) -> (usize, usize),
 ) -> io::Result<()> {
     preview_json::write_header_with(out, file, metric, assumed)?;
     for (index, movement) in moves.iter().enumerate() {
-        preview_json::write_executed_move(out, movement, index == 0, file)?;
+        let time = timing.0.time_of(&movement.movement).seconds;
+        preview_json::write_executed_move(out, movement, index == 0, file, time)?;
     }
     let columns = std::cell::RefCell::new(columns);
-    preview_json::write_footer(out, diagnostics, &|item| {
+    preview_json::write_footer(out, timing.1, diagnostics, &|item| {
         (columns.borrow_mut())(item.line, item.diagnostic.span)
     })
 }
@@ -204,13 +227,14 @@ fn write_csv_header(out: &mut dyn Write, config: &MachineConfig) -> io::Result<(
     for axis in &config.axes {
         write!(out, ",{}", axis.name)?;
     }
-    writeln!(out, ",feed,uncertain,pass,file,cycle,inserted")
+    writeln!(out, ",feed,uncertain,pass,file,cycle,inserted,time_s")
 }
 
 fn write_csv_row(
     out: &mut dyn Write,
     config: &MachineConfig,
     executed: &ExecutedMove,
+    time_s: Option<f64>,
 ) -> io::Result<()> {
     let movement = &executed.movement;
     write!(
@@ -248,10 +272,15 @@ fn write_csv_row(
         write!(out, ",{pass},{file}")?;
     }
     // The cycle's name and the inserted element are plain words: they need no quoting.
-    writeln!(
+    write!(
         out,
         ",{},{}",
         movement.cycle.as_deref().unwrap_or(""),
         movement.inserted.unwrap_or("")
-    )
+    )?;
+    match time_s {
+        // Microseconds, as the JSON writes them.
+        Some(seconds) => writeln!(out, ",{}", (seconds * 1e6).round() / 1e6),
+        None => writeln!(out, ","),
+    }
 }

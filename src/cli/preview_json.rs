@@ -54,10 +54,69 @@ pub(crate) fn write_header_with(
     out.write_all(b"\n\"moves\": [")
 }
 
-/// Writes one move; `first` says whether it opens the array.
-pub(crate) fn write_move(out: &mut dyn Write, movement: &Move, first: bool) -> io::Result<()> {
+/// Writes one move with its time in seconds (`null` when unknown); `first` says whether it opens
+/// the array.
+pub(crate) fn write_move(
+    out: &mut dyn Write,
+    movement: &Move,
+    first: bool,
+    time_s: Option<f64>,
+) -> io::Result<()> {
     write_move_fields(out, movement, first)?;
+    write_time(out, time_s)?;
     out.write_all(b"}")
+}
+
+/// Writes `,"time_s":` and the seconds, rounded to microseconds, or `null`.
+fn write_time(out: &mut dyn Write, time_s: Option<f64>) -> io::Result<()> {
+    out.write_all(b",\"time_s\":")?;
+    write_seconds(out, time_s)
+}
+
+/// Seconds rounded to microseconds, written from their integer microseconds (a preview writes one
+/// per move); `null` when unknown.
+fn write_seconds(out: &mut dyn Write, seconds: Option<f64>) -> io::Result<()> {
+    let micros = match seconds {
+        Some(seconds) if seconds.is_finite() && (0.0..1e12).contains(&seconds) => {
+            (seconds * 1e6).round() as u64
+        }
+        Some(seconds) if seconds.is_finite() => {
+            return serde_json::to_writer(out, &seconds).map_err(io::Error::from)
+        }
+        _ => return out.write_all(b"null"),
+    };
+    let (whole, mut fraction) = (micros / 1_000_000, micros % 1_000_000);
+    write_integer(out, whole)?;
+    if fraction == 0 {
+        return out.write_all(b".0");
+    }
+    let mut digits = [b'.', b'0', b'0', b'0', b'0', b'0', b'0'];
+    for place in (1..7).rev() {
+        digits[place] = b'0' + (fraction % 10) as u8;
+        fraction /= 10;
+    }
+    let mut length = 7;
+    while digits[length - 1] == b'0' {
+        length -= 1;
+    }
+    out.write_all(&digits[..length])
+}
+
+/// Writes the top-level `"time"` of the preview: the sums over the moves and dwells, and how many
+/// moves' times are unknown.
+pub(crate) fn write_time_totals(
+    out: &mut dyn Write,
+    totals: &crate::analysis::simulation::time::TimeTotals,
+) -> io::Result<()> {
+    out.write_all(b"\n\"time\":{\"total_s\":")?;
+    write_seconds(out, Some(totals.total_s))?;
+    out.write_all(b",\"feed_s\":")?;
+    write_seconds(out, Some(totals.feed_s))?;
+    out.write_all(b",\"rapid_s\":")?;
+    write_seconds(out, Some(totals.rapid_s))?;
+    out.write_all(b",\"dwell_s\":")?;
+    write_seconds(out, Some(totals.dwell_s))?;
+    write!(out, ",\"unknown_moves\":{}}},", totals.unknown_moves)
 }
 
 /// Writes one executed move: the move's fields, then what execution adds (`pass`, `file`, `stack`,
@@ -67,8 +126,10 @@ pub(crate) fn write_executed_move(
     executed: &ExecutedMove,
     first: bool,
     file: &str,
+    time_s: Option<f64>,
 ) -> io::Result<()> {
     write_move_fields(out, &executed.movement, first)?;
+    write_time(out, time_s)?;
     if executed.pass > 0 {
         write!(out, ",\"pass\":{}", executed.pass)?;
     }
@@ -111,8 +172,13 @@ pub(crate) fn write_executed_move(
 
 /// Writes the fields of one move, without the closing brace.
 fn write_move_fields(out: &mut dyn Write, movement: &Move, first: bool) -> io::Result<()> {
-    out.write_all(if first { b"\n  " } else { b",\n  " })?;
-    write!(out, "{{\"line\":{},\"block\":", movement.line + 1)?;
+    out.write_all(if first {
+        b"\n  {\"line\":"
+    } else {
+        b",\n  {\"line\":"
+    })?;
+    write_integer(out, movement.line as u64 + 1)?;
+    out.write_all(b",\"block\":")?;
     serde_json::to_writer(&mut *out, &movement.block_number)?;
     out.write_all(b",\"motion\":")?;
     serde_json::to_writer(&mut *out, movement.motion.as_ref())?;
@@ -167,14 +233,17 @@ fn write_move_fields(out: &mut dyn Write, movement: &Move, first: bool) -> io::R
     Ok(())
 }
 
-/// Closes the `moves` array and writes the diagnostics with 1-based lines and character columns
-/// (`columns` converts a line's byte span).
+/// Closes the `moves` array and writes the time totals and the diagnostics with 1-based lines and
+/// character columns (`columns` converts a line's byte span).
 pub(crate) fn write_footer(
     out: &mut dyn Write,
+    totals: &crate::analysis::simulation::time::TimeTotals,
     diagnostics: &[LineDiagnostic],
     columns: &dyn Fn(&LineDiagnostic) -> (usize, usize),
 ) -> io::Result<()> {
-    out.write_all(b"\n],\n\"diagnostics\": [")?;
+    out.write_all(b"\n],")?;
+    write_time_totals(out, totals)?;
+    out.write_all(b"\n\"diagnostics\": [")?;
     for (index, item) in diagnostics.iter().enumerate() {
         out.write_all(if index == 0 { b"\n  " } else { b",\n  " })?;
         let (column, end_column) = columns(item);
@@ -214,18 +283,60 @@ fn write_number(out: &mut dyn Write, value: f64) -> io::Result<()> {
         let count = thousandths as i64;
         // The text below parses back to `value` only if `value` is the double nearest to it.
         if count as f64 / 1000.0 == value {
-            let sign = if count < 0 { "-" } else { "" };
             let magnitude = count.unsigned_abs();
             let (whole, fraction) = (magnitude / 1000, magnitude % 1000);
-            return match fraction {
-                0 => write!(out, "{sign}{whole}.0"),
-                _ if fraction % 100 == 0 => write!(out, "{sign}{whole}.{}", fraction / 100),
-                _ if fraction % 10 == 0 => write!(out, "{sign}{whole}.{:02}", fraction / 10),
-                _ => write!(out, "{sign}{whole}.{fraction:03}"),
+            // The digits are put together in a buffer: the formatting machinery of `write!` was a
+            // tenth of a preview's time.
+            let mut buffer = [0u8; 40];
+            let mut length = 0;
+            if count < 0 {
+                buffer[0] = b'-';
+                length = 1;
+            }
+            length += write_digits(&mut buffer[length..], whole);
+            buffer[length] = b'.';
+            length += 1;
+            let digits = [fraction / 100, fraction / 10 % 10, fraction % 10];
+            let shown = match fraction {
+                0 => 1,
+                _ if fraction % 100 == 0 => 1,
+                _ if fraction % 10 == 0 => 2,
+                _ => 3,
             };
+            for digit in &digits[..shown] {
+                buffer[length] = b'0' + *digit as u8;
+                length += 1;
+            }
+            return out.write_all(&buffer[..length]);
         }
     }
     serde_json::to_writer(out, &value).map_err(io::Error::from)
+}
+
+/// Writes the decimal digits of `value` at the start of `buffer` (which holds at least 20 bytes)
+/// and returns how many.
+fn write_digits(buffer: &mut [u8], mut value: u64) -> usize {
+    let mut reversed = [0u8; 20];
+    let mut count = 0;
+    loop {
+        reversed[count] = b'0' + (value % 10) as u8;
+        count += 1;
+        value /= 10;
+        if value == 0 {
+            break;
+        }
+    }
+    for (index, digit) in reversed[..count].iter().rev().enumerate() {
+        buffer[index] = *digit;
+    }
+    count
+}
+
+/// Writes an unsigned integer without the formatting machinery.
+fn write_integer(out: &mut dyn Write, value: u64) -> io::Result<()> {
+    let mut buffer = [0u8; 20];
+    let length = write_digits(&mut buffer, value);
+    out.write_all(&buffer[..length])
 }
 
 #[cfg(test)]
@@ -236,6 +347,27 @@ mod tests {
         let mut out = Vec::new();
         write_number(&mut out, value).unwrap();
         String::from_utf8(out).unwrap()
+    }
+
+    fn seconds(value: Option<f64>) -> String {
+        let mut out = Vec::new();
+        write_seconds(&mut out, value).unwrap();
+        String::from_utf8(out).unwrap()
+    }
+
+    #[test]
+    fn seconds_print_to_the_microsecond() {
+        assert_eq!(seconds(Some(12.0)), "12.0");
+        assert_eq!(seconds(Some(9.42477796)), "9.424778");
+        assert_eq!(seconds(Some(0.015)), "0.015");
+        assert_eq!(seconds(Some(0.0000004)), "0.0");
+        assert_eq!(seconds(None), "null");
+        assert_eq!(seconds(Some(f64::NAN)), "null");
+        for value in [0.1, 1.5, 45.898544, 1234.000001] {
+            let text = seconds(Some(value));
+            let back: f64 = text.parse().unwrap();
+            assert!((back - value).abs() < 1e-6, "{value} {text}");
+        }
     }
 
     #[test]

@@ -30,6 +30,10 @@ pub struct ExecutionOptions {
     /// Whether the PLC requests the restart of `GOTOS` (reference §17.7): `Some(false)` (the
     /// default) never, `Some(true)` always, `None` unknown (both ways are followed).
     pub gotos_restarts: Option<bool>,
+    /// Whether the run hands out the dwell blocks (`G4`) as moves of no axis
+    /// (`Engine::describe_last_dwell`), for the machining time. Not a key of `sinumerik.toml`: the
+    /// consumers that time a program ask for it, the others keep the moves of the path only.
+    pub dwell_moves: bool,
 }
 
 impl Default for ExecutionOptions {
@@ -41,6 +45,7 @@ impl Default for ExecutionOptions {
             entry: EntryState::Reset,
             m30_ends_subprogram: true,
             gotos_restarts: Some(false),
+            dwell_moves: false,
         }
     }
 }

@@ -199,6 +199,8 @@ struct RawConfig {
     cycles: super::cycles::RawCycles,
     #[serde(default)]
     contours: super::contours::RawContours,
+    #[serde(default)]
+    timing: super::timing::RawTiming,
 }
 
 /// The `[machine]` table. Numbers are read as `i64` and range-checked here, which gives a clearer
@@ -501,6 +503,15 @@ impl RawConfig {
             .contours
             .convert()
             .map_err(|(name, message)| invalid(&[key("contours"), key(name)], message))?;
+        config.timing = self
+            .timing
+            .convert(&config.axes)
+            .map_err(|(path, message)| {
+                let keys: Vec<KeySegment> = std::iter::once(key("timing"))
+                    .chain(path.iter().map(|name| key(name)))
+                    .collect();
+                invalid(&keys, message)
+            })?;
         Ok(config)
     }
 }

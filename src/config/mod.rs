@@ -1,10 +1,11 @@
 //! The machine configuration: what the control's machine data would tell about axes, units, reset state
 //! and tolerances. Plain data with defaults; reading `sinumerik.toml` lives in `file.rs`.
 
-pub mod cycles;
 pub mod contours;
+pub mod cycles;
 pub mod execution;
 mod file;
+pub mod timing;
 
 pub use file::{
     discover_config_file, load_config_file, parse_config_text, ConfigError, CONFIG_FILE_NAME,
@@ -107,6 +108,8 @@ pub struct MachineConfig {
     pub cycles: cycles::CycleOptions,
     /// How chamfers and roundings are inserted (`[contours]`).
     pub contours: contours::ContourOptions,
+    /// How machining time is estimated (`[timing]`).
+    pub timing: timing::TimingOptions,
 }
 
 impl Default for MachineConfig {
@@ -143,6 +146,7 @@ impl MachineConfig {
             execution: Default::default(),
             cycles: Default::default(),
             contours: Default::default(),
+            timing: Default::default(),
         }
     }
 

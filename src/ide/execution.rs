@@ -55,6 +55,12 @@ pub fn execute_document(
     });
     let text: Arc<str> = Arc::from(text);
     let subprogram = kind == ProgramKind::Subprogram || crate::analysis::has_proc_header(&text);
+    // The run hands out the dwells too, for the machining time (`ide/timing.rs`); the features that
+    // show the path leave them out (`moves_in`, `moves_of_line`).
+    let options = &ExecutionOptions {
+        dwell_moves: true,
+        ..options.clone()
+    };
     let setup = RunSetup {
         entry: subprogram.then(|| library.caller_entry()).flatten(),
         record_first_passes: true,
@@ -172,6 +178,7 @@ impl DocumentExecution {
             indexes
                 .iter()
                 .map(|&index| &moves[index as usize])
+                .filter(|executed| executed.movement.timing.dwell.is_none())
                 .collect(),
         )
     }
@@ -197,6 +204,7 @@ impl DocumentExecution {
                 indexes
                     .iter()
                     .map(|&index| &moves[index as usize])
+                    .filter(|executed| executed.movement.timing.dwell.is_none())
                     .collect()
             }
         }

@@ -31,6 +31,7 @@ pub mod renumber;
 pub mod semantic_tokens;
 pub mod signature_help;
 pub mod symbols;
+pub mod timing;
 pub mod workspace;
 
 mod names;

@@ -64,9 +64,12 @@ pub struct Analysed {
     /// for the revision and library generation it ran with. Shared, so that a run can be made
     /// without holding the document's analysis (see [`ExecutionJob`]).
     execution: Arc<Mutex<CachedExecution>>,
+    /// The machining times of the run (`ide::timing`), kept like the run.
+    times: Arc<Mutex<CachedTimes>>,
 }
 
 type CachedExecution = Option<(u64, u64, Arc<DocumentExecution>)>;
+type CachedTimes = Option<(u64, u64, Arc<crate::ide::timing::DocumentTimes>)>;
 
 /// What running one revision of a document needs, taken from its analysis so that the run (seconds
 /// for a large program with many loops) does not hold the analysis, which every edit needs.
@@ -76,6 +79,7 @@ pub struct ExecutionJob {
     config: Arc<MachineConfig>,
     kind: crate::analysis::ProgramKind,
     cache: Arc<Mutex<CachedExecution>>,
+    times: Arc<Mutex<CachedTimes>>,
 }
 
 impl ExecutionJob {
@@ -112,6 +116,31 @@ impl ExecutionJob {
         }
         execution
     }
+
+    /// The machining times of the job's revision: the cached ones, or made now from its run.
+    pub fn times(&self, library: &dyn ProgramLibrary) -> Arc<crate::ide::timing::DocumentTimes> {
+        let execution = self.run(library);
+        let generation = library.generation();
+        let mut cached = lock(&self.times);
+        if let Some((revision, run_generation, times)) = cached.as_ref() {
+            if *revision == self.revision && *run_generation == generation {
+                return Arc::clone(times);
+            }
+        }
+        let times = Arc::new(crate::ide::timing::DocumentTimes::new(
+            &RopeLines::new(&self.rope),
+            &execution,
+            &self.config,
+            self.kind,
+        ));
+        let newer = cached
+            .as_ref()
+            .is_some_and(|(revision, _, _)| *revision > self.revision);
+        if !newer {
+            *cached = Some((self.revision, generation, Arc::clone(&times)));
+        }
+        times
+    }
 }
 
 impl Analysed {
@@ -122,6 +151,11 @@ impl Analysed {
     /// The run of this revision of the document, made now if no feature asked for it before.
     pub fn execution(&self, library: &dyn ProgramLibrary) -> Arc<DocumentExecution> {
         self.execution_job().run(library)
+    }
+
+    /// The machining times of this revision, made now if no feature asked for them before.
+    pub fn times(&self, library: &dyn ProgramLibrary) -> Arc<crate::ide::timing::DocumentTimes> {
+        self.execution_job().times(library)
     }
 
     /// Whether a feature at `line` may show the run rather than the reading in program order: the
@@ -137,6 +171,21 @@ impl Analysed {
         report.before.flow_uncertain || report.after.flow_uncertain
     }
 
+    /// The machining times of this revision if a request already made them (the status bar's, the
+    /// toolpath's): the hover shows them without reading a large document again on every edit.
+    pub fn cached_times(
+        &self,
+        library: &dyn ProgramLibrary,
+    ) -> Option<Arc<crate::ide::timing::DocumentTimes>> {
+        let generation = library.generation();
+        lock(&self.times)
+            .as_ref()
+            .filter(|(revision, run_generation, _)| {
+                *revision == self.revision && *run_generation == generation
+            })
+            .map(|(_, _, times)| Arc::clone(times))
+    }
+
     /// What running this revision needs, to run it after letting go of the analysis.
     pub fn execution_job(&self) -> ExecutionJob {
         ExecutionJob {
@@ -145,6 +194,7 @@ impl Analysed {
             config: Arc::clone(&self.config),
             kind: self.analysis.kind(),
             cache: Arc::clone(&self.execution),
+            times: Arc::clone(&self.times),
         }
     }
 }
@@ -451,6 +501,7 @@ impl OpenDocument {
                         revision,
                         config,
                         execution: Arc::new(Mutex::new(None)),
+                        times: Arc::new(Mutex::new(None)),
                     });
                     return slot;
                 }

@@ -8,6 +8,8 @@ use crate::cli::preview::{line_columns, write_executed_preview_json, write_previ
 use crate::cli::source_file::read_source_file;
 use crate::config::MachineConfig;
 use crate::ide::execution::{execute_document, DocumentExecution};
+use crate::ide::timing::DocumentTimes;
+use crate::ide::timing::{TimeModel, TimeTotals};
 use crate::lsp::documents::Analysed;
 use serde_json::Value;
 use std::path::Path;
@@ -34,11 +36,15 @@ impl LineSelection {
 fn preview(
     analysis: &DocumentAnalysis,
     execution: &DocumentExecution,
+    times: Option<&DocumentTimes>,
     source: &dyn LineSource,
     label: &str,
     lines: LineSelection,
 ) -> Result<Value, String> {
     let range = lines.range(source.line_count());
+    // Each move's time, and the totals of the lines asked for: from the document's times (with the
+    // dwells) when they are made, else from the moves listed.
+    let model = TimeModel::new(analysis.config());
     let diagnostics = analysis.diagnostics();
     let first = diagnostics.partition_point(|item| item.line < range.start);
     let last = diagnostics.partition_point(|item| item.line < range.end);
@@ -53,13 +59,30 @@ fn preview(
     diagnostics.sort_by_key(|item| (item.line, item.diagnostic.span.start()));
     let mut json = Vec::new();
     let mut columns = |line_idx: usize, span| line_columns(&source.line(line_idx), span);
-    match execution.moves_in(range.clone()) {
+    let executed = execution.moves_in(range.clone());
+    let in_order = match executed {
+        Some(_) => Vec::new(),
+        None => analysis.moves(source, range.clone()),
+    };
+    let totals = match times {
+        Some(times) => times.totals_in(range.clone()),
+        None => {
+            let mut totals = TimeTotals::default();
+            let listed = executed.iter().flatten().map(|executed| &executed.movement);
+            for movement in listed.chain(in_order.iter()) {
+                totals.add(model.time_of(movement));
+            }
+            totals
+        }
+    };
+    match executed {
         Some(moves) => write_executed_preview_json(
             &mut json,
             label,
             analysis.config().metric,
             execution.assumed(),
             &moves,
+            (&model, &totals),
             &diagnostics,
             &mut columns,
         ),
@@ -67,13 +90,34 @@ fn preview(
             &mut json,
             label,
             analysis.config().metric,
-            &analysis.moves(source, range.clone()),
+            &in_order,
+            (&model, &totals),
             &diagnostics,
             &mut columns,
         ),
     }
     .map_err(|error| format!("cannot write the preview: {error}"))?;
-    serde_json::from_slice(&json).map_err(|error| format!("cannot read the preview back: {error}"))
+    let mut value: Value = serde_json::from_slice(&json)
+        .map_err(|error| format!("cannot read the preview back: {error}"))?;
+    // `time` sums the lines asked for; `program_time` is the whole document's, the same for every
+    // range, so that a client fetching ranges whose ends overlap needs not add them up.
+    let (Some(times), Some(object)) = (times, value.as_object_mut()) else {
+        return Ok(value);
+    };
+    let whole = times.totals();
+    {
+        object.insert(
+            "program_time".to_string(),
+            serde_json::json!({
+                "total_s": whole.total_s,
+                "feed_s": whole.feed_s,
+                "rapid_s": whole.rapid_s,
+                "dwell_s": whole.dwell_s,
+                "unknown_moves": whole.unknown_moves,
+            }),
+        );
+    }
+    Ok(value)
 }
 
 /// The preview of an open document, from its up-to-date analysis.
@@ -84,9 +128,18 @@ pub fn preview_open(
     library: &dyn ProgramLibrary,
 ) -> Result<Value, String> {
     let execution = analysed.execution(library);
+    // The document's times are made by a request from its first line (where a client's load of the
+    // toolpath starts) or found made; a request for a few lines in the middle of a large document
+    // after each edit does not read the whole program again.
+    let times = if lines.start.unwrap_or(0) == 0 {
+        Some(analysed.times(library))
+    } else {
+        analysed.cached_times(library)
+    };
     preview(
         &analysed.analysis,
         &execution,
+        times.as_deref(),
         &analysed.lines(),
         label,
         lines,
@@ -106,5 +159,13 @@ pub fn preview_file(
     let text_lines = TextLines::new(&source.text);
     let analysis = DocumentAnalysis::new(&text_lines, Arc::clone(&config), kind);
     let execution = execute_document(&text_lines, &config, kind, library, &config.execution, None);
-    preview(&analysis, &execution, &text_lines, label, lines)
+    let times = DocumentTimes::new(&text_lines, &execution, &config, kind);
+    preview(
+        &analysis,
+        &execution,
+        Some(&times),
+        &text_lines,
+        label,
+        lines,
+    )
 }

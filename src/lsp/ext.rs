@@ -66,4 +66,17 @@ pub struct ModalStateResult {
     /// block runs (0: never); absent when it is the state in program order.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub passes: Option<u32>,
+    /// The machining time of the whole program (reference §15), as the preview's top-level `time`.
+    pub time: ProgramTime,
+}
+
+/// The machining time of a program: the seconds of the moves whose time is known, by kind, and how
+/// many moves' times are unknown (then the total is a lower bound).
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
+pub struct ProgramTime {
+    pub total_s: f64,
+    pub feed_s: f64,
+    pub rapid_s: f64,
+    pub dwell_s: f64,
+    pub unknown_moves: u64,
 }

@@ -20,6 +20,10 @@ use crate::syntax::gcodes::GCode;
 use std::fmt::Write;
 use tower_lsp_server::ls_types::{Hover, HoverContents, MarkupContent, MarkupKind, Position};
 
+/// Up to this many lines the hover makes the machining times of a revision itself (a few
+/// milliseconds); a larger document shows them once the status bar or the toolpath made them.
+const HOVER_TIMES_LINES: usize = 20_000;
+
 /// The hover at `position` of the analysed text, `None` on a line without words. On a word that is
 /// neither an axis word nor a G function, `documentation` (called with the line's text, its index
 /// and the byte offset) gives the word's documentation, shown above the block's state.
@@ -80,6 +84,19 @@ pub fn hover(
     };
     let markdown = match run_summary {
         Some(summary) => format!("{summary}\n\n---\n\n{markdown}"),
+        None => markdown,
+    };
+    // The machining time of the block over its passes and the time before its first pass, when the
+    // status bar or the toolpath made this revision's times: a hover does not read a large program
+    // again after every edit.
+    let times = if lines.line_count() <= HOVER_TIMES_LINES {
+        Some(analysed.times(library))
+    } else {
+        analysed.cached_times(library)
+    };
+    let time = times.and_then(|times| crate::ide::timing::time_summary(&times, line_idx));
+    let markdown = match time {
+        Some(time) => format!("{markdown}\n\n---\n\n{time}"),
         None => markdown,
     };
     Some(Hover {

@@ -6,7 +6,7 @@
 use crate::analysis::library::ProgramLibrary;
 use crate::analysis::ProgramKind;
 use crate::lsp::documents::Analysed;
-use crate::lsp::ext::ModalStateResult;
+use crate::lsp::ext::{ModalStateResult, ProgramTime};
 
 /// The modal state after the block on `line` of `analysed`.
 pub fn modal_state_at(
@@ -18,6 +18,14 @@ pub fn modal_state_at(
         .analysis
         .block_report(&analysed.lines(), line)
         .after;
+    let totals = analysed.times(library).totals();
+    let time = ProgramTime {
+        total_s: totals.total_s,
+        feed_s: totals.feed_s,
+        rapid_s: totals.rapid_s,
+        dwell_s: totals.dwell_s,
+        unknown_moves: totals.unknown_moves,
+    };
     let needs_run = after.flow_uncertain || analysed.analysis.kind() == ProgramKind::Subprogram;
     if needs_run {
         let execution = analysed.execution(library);
@@ -33,6 +41,7 @@ pub fn modal_state_at(
                 // The run follows the control's way: its first pass is not uncertain for flow.
                 flow_uncertain: false,
                 passes: Some(passes),
+                time,
             };
         }
     }
@@ -46,5 +55,6 @@ pub fn modal_state_at(
         feed: after.feed,
         flow_uncertain: after.flow_uncertain,
         passes: None,
+        time,
     }
 }

@@ -167,7 +167,7 @@ impl Backend {
         let library =
             crate::lsp::library::workspace_library(&self.shared, file_path(&params.uri).as_deref());
         let warm = Arc::clone(&library);
-        self.on_analysis_after_run(&params.uri, warm, line, move |analysed| {
+        self.on_analysis_after_times(&params.uri, warm, move |analysed| {
             crate::lsp::modal_state::modal_state_at(analysed, library.as_ref(), line)
         })
         .await
@@ -349,12 +349,36 @@ impl Shared {
     /// Like [`Self::on_analysis`] for a request that shows the run of the program at `line`: when
     /// the block there is not read in program order (after a label, a jump or a loop, or in a
     /// subprogram), the run of the revision is made first without holding the analysis, so that
-    /// edits meanwhile are analysed and published; the job then finds it made.
+    /// edits meanwhile are analysed and published; the job then finds it made. With `times`, the
+    /// revision's machining times (which every document needs, also one read in program order) are
+    /// made the same way.
     pub(super) async fn on_analysis_after_run<T: Send + 'static>(
         &self,
         uri: &Uri,
         library: Arc<dyn crate::analysis::library::ProgramLibrary>,
         line: usize,
+        job: impl FnOnce(&Analysed) -> T + Send + 'static,
+    ) -> Result<T> {
+        self.on_analysis_after(uri, library, Some(line), job).await
+    }
+
+    /// Like [`Self::on_analysis_after_run`], making the run and the machining times of the
+    /// revision first.
+    pub(super) async fn on_analysis_after_times<T: Send + 'static>(
+        &self,
+        uri: &Uri,
+        library: Arc<dyn crate::analysis::library::ProgramLibrary>,
+        job: impl FnOnce(&Analysed) -> T + Send + 'static,
+    ) -> Result<T> {
+        self.on_analysis_after(uri, library, None, job).await
+    }
+
+    /// The run (for a request at `Some(line)` that may show it) or the run and the times (`None`).
+    async fn on_analysis_after<T: Send + 'static>(
+        &self,
+        uri: &Uri,
+        library: Arc<dyn crate::analysis::library::ProgramLibrary>,
+        line: Option<usize>,
         job: impl FnOnce(&Analysed) -> T + Send + 'static,
     ) -> Result<T> {
         if let Some(document) = self.documents.get(uri) {
@@ -364,12 +388,19 @@ impl Shared {
                     let slot = document.catch_up();
                     slot.as_ref()
                         .filter(|analysed| {
-                            analysed.revision == revision && analysed.may_show_run(line)
+                            analysed.revision == revision
+                                && line.is_none_or(|line| analysed.may_show_run(line))
                         })
                         .map(|analysed| analysed.execution_job())
                 };
-                if let Some(run) = run {
-                    run.run(library.as_ref());
+                match (run, line) {
+                    (Some(run), Some(_)) => {
+                        run.run(library.as_ref());
+                    }
+                    (Some(run), None) => {
+                        run.times(library.as_ref());
+                    }
+                    (None, _) => {}
                 }
             })
             .await;

@@ -49,6 +49,7 @@ impl ModalState {
         keep_if_equal(&mut self.rounding_modal, &other.rounding_modal);
         keep_if_equal(&mut self.chamfer_feed_modal, &other.chamfer_feed_modal);
         keep_if_equal(&mut self.open_angle, &other.open_angle);
+        self.spindle.join(&other.spindle);
     }
 }
 

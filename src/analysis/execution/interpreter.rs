@@ -414,6 +414,12 @@ impl<'a, 's> Interpreter<'a, 's> {
             self.update_assumptions(control, engine, line, &block);
             if moved && !self.counting && !control.widening() {
                 self.record_move(control, engine, unit_index, pc, line, &block);
+            } else if self.options.dwell_moves
+                && !self.counting
+                && !control.widening()
+                && control.level().curve_table.is_none()
+            {
+                self.record_dwell(control, engine, unit_index, pc, line, &block);
             }
             if let Some(mark) = table {
                 self.table_end(control, engine, mark);
@@ -439,6 +445,21 @@ impl<'a, 's> Interpreter<'a, 's> {
         }
     }
 
+    /// Hands out the dwell of a `G4` block as a move of no axis, when the run is asked for them.
+    pub(super) fn record_dwell(
+        &mut self,
+        control: &Control,
+        engine: &Engine<'a>,
+        unit_index: usize,
+        pc: usize,
+        line: &str,
+        block: &Block,
+    ) {
+        if let Some(dwell) = engine.describe_last_dwell(pc, line, block) {
+            self.hand_out(control, unit_index, pc, dwell);
+        }
+    }
+
     pub(super) fn record_move(
         &mut self,
         control: &Control,
@@ -448,7 +469,18 @@ impl<'a, 's> Interpreter<'a, 's> {
         line: &str,
         block: &Block,
     ) {
-        let mut movement = engine.describe_last_move(pc, line, block);
+        let movement = engine.describe_last_move(pc, line, block);
+        self.hand_out(control, unit_index, pc, movement);
+    }
+
+    /// Hands a move of the current way to the sink, named after the cycle whose model makes it.
+    fn hand_out(
+        &mut self,
+        control: &Control,
+        unit_index: usize,
+        pc: usize,
+        mut movement: crate::analysis::Move,
+    ) {
         movement.cycle = self.cycles.current.clone();
         let assumed = if control.assumed_axes == 0 {
             Vec::new()
@@ -547,10 +579,13 @@ impl<'a, 's> Interpreter<'a, 's> {
             if let Some(flag) = self.corner_flag.filter(|_| moved) {
                 flag.set(flag.get() || engine.has_contour_request());
             }
-            if moved && !self.counting {
+            let dwell = (!moved && self.options.dwell_moves)
+                .then(|| engine.describe_last_dwell(pc, line, &block))
+                .flatten();
+            if (moved || dwell.is_some()) && !self.counting {
                 let pass = self.pass_of(0, pc);
                 (self.sink)(ExecutedMove {
-                    movement: engine.describe_last_move(pc, line, &block),
+                    movement: dwell.unwrap_or_else(|| engine.describe_last_move(pc, line, &block)),
                     path: None,
                     stack: Arc::clone(&stack),
                     pass,

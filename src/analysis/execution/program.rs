@@ -190,6 +190,8 @@ impl ProgramUnit {
         let mut open: Vec<(StructureKeyword, usize, Option<usize>)> = Vec::new();
         let mut broken = false;
         let mut in_definitions = true;
+        // The block numbers in program order; indexed only when something can jump to them.
+        let mut numbered: Vec<(u64, usize)> = Vec::new();
         let last_line = self.line_count().saturating_sub(1);
         for index in 0..self.line_count() {
             self.parse(&mut parser, index, &mut block);
@@ -199,10 +201,7 @@ impl ProgramUnit {
                 flow.has_flow = true;
             }
             if let Some(number) = block.number {
-                flow.block_numbers
-                    .entry(number.value)
-                    .or_default()
-                    .push(index);
+                numbered.push((number.value, index));
             }
             let statements = block.interpreted_statements();
             let mut executable = false;
@@ -242,6 +241,13 @@ impl ProgramUnit {
             // interpreter does not follow them: their lines have no partners.
             flow.partners.retain(|_, _| false);
             flow.has_flow = true;
+        }
+        // A program without flow runs in order: nothing jumps to a block number, and a CAM program
+        // numbers every block (a million entries to build and free for nothing).
+        if flow.has_flow {
+            for (value, index) in numbered {
+                flow.block_numbers.entry(value).or_default().push(index);
+            }
         }
         flow
     }

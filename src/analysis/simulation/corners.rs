@@ -309,6 +309,16 @@ impl<'c> CornerStage<'c> {
         movement.end = end;
         movement.machine = None;
         movement.feed = feed;
+        // The element's time follows the technology it takes (§14.5): that block's feed type and
+        // spindle, with the element's own feed. Under inverse time (G93) a feed of the element is
+        // not a time per block, so its time stays unknown.
+        movement.timing = technology.movement.timing.clone();
+        movement.timing.dwell = None;
+        movement.timing.feed = feed;
+        movement.timing.programmed_feed = match movement.timing.feed_type {
+            Some(crate::analysis::engine::spindle::FeedType::InverseTime) => None,
+            _ => feed,
+        };
         movement.arc = arc;
         movement.contour = None;
         movement.inserted = Some(label);

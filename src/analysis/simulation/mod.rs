@@ -1,8 +1,10 @@
 //! What turns the control's executed blocks into the path the tool takes (docs/simulation.md):
-//! stages that stream over the executed moves in execution order.
+//! stages that stream over the executed moves in execution order (corners), and the machining time
+//! of each move (time).
 
 pub mod corner_geometry;
 pub mod corners;
+pub mod time;
 
 pub use corners::CornerStage;
 

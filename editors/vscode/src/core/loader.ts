@@ -8,6 +8,7 @@ import type { PlaneName, ToPage } from './messages';
 import { fileUri } from './files';
 import { packMoves } from './packed';
 import { parsePreview } from './preview';
+import type { ProgramTime } from './machiningTime';
 
 export const PREVIEW_COMMAND = 'sinumerik.endpointPreview';
 
@@ -59,12 +60,15 @@ export class ToolpathLoader {
     // The units and the assumed entry state are known with the first answer; until then the page
     // shows the defaults.
     let first = true;
+    // The whole program's machining time, the same in every answer of one revision.
+    let time: ProgramTime | null = null;
     post({ type: 'reset', generation, title: request.title, units: 'mm', plane: request.plane });
     try {
       for (const range of chunkRanges(request.lineCount, this.deps.chunkLines ?? DEFAULT_CHUNK_LINES)) {
         const answer = await this.deps.executePreview(previewArguments(request.uri, range));
         if (generation !== this.generation) return;
         const preview = parsePreview(answer);
+        time = preview.time ?? time;
         if (first && (preview.units !== 'mm' || Object.keys(preview.assumed).length)) {
           const assumed = Object.keys(preview.assumed).length ? { assumed: preview.assumed } : {};
           post({ type: 'reset', generation, title: request.title, units: preview.units, plane: request.plane, ...assumed });
@@ -81,7 +85,7 @@ export class ToolpathLoader {
         if (part.wholeProgram) break;
       }
       this.complete = arriving;
-      post({ type: 'done', generation });
+      post(time ? { type: 'done', generation, time } : { type: 'done', generation });
     } catch (error) {
       if (generation !== this.generation) return;
       const text = error instanceof Error ? error.message : String(error);

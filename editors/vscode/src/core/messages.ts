@@ -1,5 +1,6 @@
 // The messages between the extension and the toolpath page.
 
+import type { ProgramTime } from './machiningTime';
 import type { PackedToolpath } from './packed';
 
 export type PlaneName = 'G17' | 'G18' | 'G19';
@@ -16,7 +17,8 @@ export type ToPage =
       assumed?: Record<string, string>;
     }
   | { type: 'append'; generation: number; packed: PackedToolpath }
-  | { type: 'done'; generation: number }
+  /** The load is complete; `time` is the program's machining time when the server gave one. */
+  | { type: 'done'; generation: number; time?: ProgramTime }
   | { type: 'error'; generation: number; message: string }
   /** The editor's cursor is on this 1-based line of the previewed file, or of `file` (a URI of the
    * toolpath's file table) when the cursor is in a called program. */

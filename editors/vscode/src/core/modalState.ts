@@ -1,6 +1,9 @@
 // The status-bar item: the modal state at the cursor from the server's `sinumerik/modalState`
 // request, `{uri, line}` -> `{motion, plane, units, distance, diameter}` (each may be null: unknown),
-// and `passes` when the state is that of the block's first execution in the program's run.
+// and `passes` when the state is that of the block's first execution in the program's run, and the
+// whole program's machining time `time` (null from an older server).
+
+import { describeProgramTime, formatProgramTime, parseProgramTime, type ProgramTime } from './machiningTime';
 
 export interface ModalState {
   motion: string | null;
@@ -10,6 +13,8 @@ export interface ModalState {
   diameter: string | null;
   /** How often the block runs when the state is its first pass's; null: the state in program order. */
   passes: number | null;
+  /** The machining time of the whole program; null when the server does not say. */
+  time: ProgramTime | null;
 }
 
 export const MODAL_STATE_REQUEST = 'sinumerik/modalState';
@@ -27,6 +32,7 @@ export function parseModalState(value: unknown): ModalState | null {
     distance: field('distance'),
     diameter: field('diameter'),
     passes: typeof record.passes === 'number' && Number.isInteger(record.passes) && record.passes >= 0 ? record.passes : null,
+    time: parseProgramTime(record.time),
   };
 }
 
@@ -58,5 +64,10 @@ export function formatModalState(state: ModalState, line: number): StatusText {
     pass = ` · pass 1 of ${state.passes}`;
     lines.push(`The block runs ${state.passes} times: this is the state of its first pass.`);
   }
-  return { text: parts.join(' ') + pass, tooltip: lines.join('\n') };
+  let time = '';
+  if (state.time) {
+    time = ` · ${formatProgramTime(state.time)}`;
+    lines.push(`Program: ${describeProgramTime(state.time)}.`);
+  }
+  return { text: parts.join(' ') + pass + time, tooltip: lines.join('\n') };
 }

@@ -5,6 +5,8 @@
 // optional, so that the answer of an older server that lists each block once reads the same; so are
 // those that say what made a move (inserted, cycle) and its time.
 
+import { parseProgramTime, type ProgramTime } from './machiningTime';
+
 /** Axis name to value; an axis that is missing is unknown. */
 export type AxisValues = Record<string, number>;
 
@@ -60,6 +62,9 @@ export interface PreviewResult {
   moves: PreviewMove[];
   /** What the analysis assumed about the entry state (e.g. units: "G71"); empty when nothing. */
   assumed: Record<string, string>;
+  /** The machining time of the whole program: the server's `program_time`, else `time` (the CLI's
+   * answer, which is the whole program); null when the answer has neither. */
+  time: ProgramTime | null;
 }
 
 export class PreviewFormatError extends Error {}
@@ -201,6 +206,7 @@ export function parsePreview(value: unknown): PreviewResult {
     units: typeof value.units === 'string' ? value.units : 'mm',
     moves,
     assumed: entryState(value.assumed),
+    time: parseProgramTime(value.program_time) ?? parseProgramTime(value.time),
   };
 }
 

@@ -3,6 +3,7 @@
 // moves a line causes in selection.ts and the words for a move in describe.ts.
 
 import { fileLabel } from '../core/files';
+import { describeProgramTime, type ProgramTime } from '../core/machiningTime';
 import type { FromPage, ToPage } from '../core/messages';
 import { AXES, concatPacked, emptyPacked, FLAG_UNCERTAIN_X, MOTIONS, revivePacked, type PackedToolpath } from '../core/packed';
 import { assumedEntryState, callPath, moveNotes, moveOrigin, moveTime } from './describe';
@@ -43,6 +44,8 @@ const state = {
   picked: -1,
   /** The entry state the analysis assumed (units, distance, plane). */
   assumed: {} as Record<string, string>,
+  /** The program's machining time from the last complete load; null when the server gave none. */
+  time: null as ProgramTime | null,
   done: false,
   /** Parts are drawn as they arrive (a new program), or collected in `incoming` (an edit). */
   progressive: true,
@@ -166,6 +169,7 @@ function updateStatus(segments: Uint32Array): void {
   if (p.conditional) parts.push(`${p.conditional.toLocaleString('en')} conditional (faded)`);
   const assumed = assumedEntryState(state.assumed);
   if (assumed) parts.push(assumed);
+  if (state.time) parts.push(describeProgramTime(state.time));
   if (state.cursorLine) parts.push(cursorStatus(segments));
   statusLine.textContent = parts.join(' · ');
 }
@@ -237,6 +241,7 @@ window.addEventListener('message', (event: MessageEvent<ToPage>) => {
     case 'done':
       if (message.generation !== state.generation) return;
       state.done = true;
+      state.time = message.time ?? null;
       if (!state.progressive) state.parts = state.incoming;
       state.incoming = [];
       if (!state.progressive || state.projectPending) reproject();

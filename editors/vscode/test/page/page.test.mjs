@@ -419,6 +419,16 @@ test('a pattern of 250,000 holes draws its rings within a frame budget (figures 
   assert.ok(times.stats.holes > 1000 && times.stats.holes < 250000, `${times.stats.holes} rings`);
 });
 
+test('the info line shows the program\'s machining time once the load is complete', async () => {
+  const preview = JSON.parse(fs.readFileSync(path.join(root, 'test', 'fixtures', 'demo_mill.preview.json'), 'utf8'));
+  const program_time = { total_s: 95.5, feed_s: 90, rapid_s: 3, dwell_s: 2.5, unknown_moves: 1 };
+  await page.evaluate(`harness.loadPreview(${JSON.stringify({ ...preview, program_time })}, 'timed.mpf', 28, null, 4)`);
+  await until('toolpathDebug.state.done', 'the timed load');
+  await page.evaluate('toolpathDebug.redrawNow()');
+  const status = await page.evaluate('document.getElementById("status").textContent');
+  assert.match(status, / · machining time at least 1 min 36 s, feed 1 min 30 s, rapid 3 s, dwell 2\.5 s \(1 moves of unknown time/);
+});
+
 test('a million moves draw within a frame budget (figures printed)', async () => {
   await page.evaluate('harness.loadSynthetic(1000000)');
   await until('toolpathDebug.state.packed.count === 1000000 && toolpathDebug.state.done', 'a million moves', 60000);

@@ -174,14 +174,22 @@ test('the status bar shows the modal state at the cursor and hides when the serv
   editor.selection = new Selection(new Position(1, 0), new Position(1, 0));
   fake.window.activeTextEditor = editor;
   let fail = false;
+  let timed = false;
+  const time = { total_s: 75, feed_s: 70, rapid_s: 5, dwell_s: 0, unknown_moves: 2 };
   const server = fakeServer((method) => (fail ? Object.assign(new Error('no such method'), { code: -32601 }) : method === 'sinumerik/modalState'
-    ? { motion: 'G1', plane: 'G17', units: 'G71', distance: 'G90', diameter: null } : null));
+    ? { motion: 'G1', plane: 'G17', units: 'G71', distance: 'G90', diameter: null, ...(timed ? { time } : {}) } : null));
   const bar = new ModalStatusBar(server);
   await wait(200);
   const item = recorded.statusItems[recorded.statusItems.length - 1];
   assert.equal(item.text, 'G90 G71 G17 G1');
   assert.ok(item.visible);
   assert.deepEqual(server.requests[server.requests.length - 1], ['sinumerik/modalState', { uri: 'file:///work/a.mpf', line: 1 }]);
+  // A server that estimates the machining time adds the program's total.
+  timed = true;
+  recorded.selectionChanged.fire({ textEditor: editor, selections: [editor.selection] });
+  await wait(200);
+  assert.equal(item.text, 'G90 G71 G17 G1 · ⏱ ≥ 1 min 15 s');
+  timed = false;
   fail = true;
   recorded.selectionChanged.fire({ textEditor: editor, selections: [editor.selection] });
   await wait(200);

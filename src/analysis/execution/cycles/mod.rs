@@ -387,6 +387,10 @@ impl<'a, 's> Interpreter<'a, 's> {
         if moved && !self.counting && !control.widening() {
             let unit_index = control.level().unit;
             self.record_move(control, engine, unit_index, pc, text, &block);
+        } else if self.options.dwell_moves && !self.counting && !control.widening() {
+            // A cycle's dwell (`G4 F=2` at the final depth) counts in the machining time.
+            let unit_index = control.level().unit;
+            self.record_dwell(control, engine, unit_index, pc, text, &block);
         }
         moved
     }
