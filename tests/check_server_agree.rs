@@ -3,7 +3,8 @@
 //! folder as the workspace), and the two lists must have the same codes, lines, columns, severities
 //! and messages. A folder of `fixtures/execution` is one workspace of several files; every other
 //! program is a workspace of its own. The configuration a fixture's header gives (`; toml:`,
-//! `; config: turn`, `; options:`) is written as the folder's `sinumerik.toml`, which both read.
+//! `; config: turn`, `; options:`) is written as the folder's `sinumerik.toml`, which both read (an
+//! empty one for the defaults).
 //!
 //! The server publishes the analysis's findings first and the cross-file and run findings once its
 //! index is complete and the document's entry is built (after the edit pause). The test waits for
@@ -24,7 +25,7 @@ use std::time::Duration;
 
 /// How long the server must stay quiet after the probe's findings before its publications count
 /// as final.
-const QUIET: Duration = Duration::from_millis(700);
+const QUIET: Duration = Duration::from_millis(1000);
 
 /// Cases run at the same time (each with a server of its own; most of the time they wait).
 const PARALLEL_CASES: usize = 12;
@@ -254,6 +255,7 @@ async fn server_findings(
         client.open(&uri, 1, &texts[name]).await;
         names_by_uri.insert(uri, name.clone());
     }
+    std::fs::write(probe_folder.join("sinumerik.toml"), "").unwrap();
     let probe = file_uri(&probe_folder.join("probe.txt"));
     client.open(&probe, 1, "GOTOF PROBE_TARGET\n").await;
     let mut latest: HashMap<String, Vec<Finding>> = HashMap::new();
@@ -310,9 +312,9 @@ async fn compare_case(
             programs.push(copy);
         }
     }
-    if !case.toml.is_empty() {
-        std::fs::write(folder.join("sinumerik.toml"), &case.toml).unwrap();
-    }
+    // Always a file, empty for the defaults: the search for a configuration (and for callees) stops
+    // in the case's folder, whatever lies above it in the temporary folder.
+    std::fs::write(folder.join("sinumerik.toml"), &case.toml).unwrap();
     let from_check = check_findings(&programs, &texts).await;
     let from_server = server_findings(&folder, &probe_folder, &texts).await;
     let _ = std::fs::remove_dir_all(&folder);
