@@ -6,11 +6,12 @@
 //! once its indexing has finished.
 //!
 //! Programs with the same folders to search share one index per run, and each file's symbol table
-//! is built once: a folder of 1,000 programs builds 1,000 tables, not a million.
+//! is built once: a folder of 1,000 programs builds 1,000 tables, not a million. The folders are
+//! read only for a program that calls programs or uses names it does not define itself.
 
 use super::library::{absolute_file, FolderLibrary};
 use crate::config::MachineConfig;
-use crate::diagnostics::LineDiagnostic;
+use crate::diagnostics::{Code, LineDiagnostic};
 use crate::ide::cross_file_diagnostics::cross_file_diagnostics;
 use crate::ide::{SymbolTable, WorkspaceIndex};
 use std::collections::HashMap;
@@ -41,14 +42,54 @@ impl CheckIndexes {
         program: &Path,
         text: &str,
         config: &MachineConfig,
-        mut config_of_folder: impl FnMut(&Path) -> Rc<MachineConfig>,
+        config_of_folder: impl FnMut(&Path) -> Rc<MachineConfig>,
     ) -> Vec<LineDiagnostic> {
-        let scope = library.scope();
-        if !self.by_scope.contains_key(&scope) {
+        // The program's entry is the one read from its text now, with its own configuration (a
+        // program named on the command line may have an extension the library does not list, or
+        // differ from the copy read for the index).
+        let name = absolute_file(program).to_string_lossy().into_owned();
+        let id: Arc<str> = Arc::from(name.as_str());
+        let own = Arc::new(SymbolTable::of_text(text, config));
+        // Jumps and the order of definitions need the program alone. The other files matter only
+        // for calls and for names the program does not define itself (more files only resolve
+        // more names), so a program without either does not have its folders read: a file in a
+        // large folder (a temporary folder, an archive) is checked without reading its neighbours.
+        let mut alone = WorkspaceIndex::new();
+        alone.insert(Arc::clone(&id), &name, Arc::clone(&own));
+        alone.set_complete(true);
+        let findings = cross_file_diagnostics(&alone, &id, config);
+        let needs_folders = !own.calls.is_empty()
+            || findings
+                .iter()
+                .any(|item| item.diagnostic.code == Code::UndefinedVariable);
+        if !needs_folders {
+            return findings;
+        }
+        let index = self.scope_index(library, config_of_folder);
+        // The index's entry of the program comes back afterwards, for the next program of the scope.
+        let earlier = index
+            .document(&id)
+            .map(|document| Arc::clone(&document.symbols));
+        index.insert(Arc::clone(&id), &name, own);
+        let findings = cross_file_diagnostics(index, &id, config);
+        match earlier {
+            Some(symbols) => index.insert(Arc::clone(&id), &name, symbols),
+            None => index.remove(&id),
+        }
+        findings
+    }
+
+    /// The complete index of the library's folders, built on first use.
+    fn scope_index(
+        &mut self,
+        library: &FolderLibrary,
+        mut config_of_folder: impl FnMut(&Path) -> Rc<MachineConfig>,
+    ) -> &mut WorkspaceIndex {
+        let tables = &mut self.tables;
+        self.by_scope.entry(library.scope()).or_insert_with(|| {
             let mut index = WorkspaceIndex::new();
             for path in library.indexed_files() {
-                let table = self
-                    .tables
+                let table = tables
                     .entry(path.clone())
                     .or_insert_with(|| {
                         let config = config_of_folder(path.parent().unwrap_or(Path::new("")));
@@ -62,29 +103,7 @@ impl CheckIndexes {
                 }
             }
             index.set_complete(true);
-            self.by_scope.insert(scope.clone(), index);
-        }
-        let Some(index) = self.by_scope.get_mut(&scope) else {
-            return Vec::new();
-        };
-        // The program's entry is the one read from its text now, with its own configuration (a
-        // program named on the command line may have an extension the library does not list, or
-        // differ from the copy read for the index); the index's entry comes back afterwards.
-        let name = absolute_file(program).to_string_lossy().into_owned();
-        let id: Arc<str> = Arc::from(name.as_str());
-        let earlier = index
-            .document(&id)
-            .map(|document| Arc::clone(&document.symbols));
-        index.insert(
-            Arc::clone(&id),
-            &name,
-            Arc::new(SymbolTable::of_text(text, config)),
-        );
-        let findings = cross_file_diagnostics(index, &id, config);
-        match earlier {
-            Some(symbols) => index.insert(Arc::clone(&id), &name, symbols),
-            None => index.remove(&id),
-        }
-        findings
+            index
+        })
     }
 }
