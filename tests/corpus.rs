@@ -2,6 +2,9 @@
 //! PROVENANCE.md): it must never panic, and it must report no error on a file that is not listed in
 //! `tests/corpus_known_invalid.txt` with the reason why the file is invalid.
 //!
+//! The findings are those of `check` that the program's folder decides: the analysis's, and the
+//! cross-file findings W301-W307 over the program and definition files of its folder.
+//!
 //! Every file is read like the command line reads it (UTF-8, else Windows-1252; the binary `.arc`
 //! archives included) and checked with `MachineConfig::mill()`; the list file explains why no file
 //! needs another configuration.
@@ -13,6 +16,9 @@ use sinumerik_lsp::analysis::{analyze_program, ProgramKind};
 use sinumerik_lsp::cli::source_file::read_source_file;
 use sinumerik_lsp::config::MachineConfig;
 use sinumerik_lsp::diagnostics::{Code, LineDiagnostic, Severity};
+use sinumerik_lsp::ide::cross_file_diagnostics::cross_file_diagnostics;
+use sinumerik_lsp::ide::workspace::{call_rank, program_name_and_kind, FileKind};
+use sinumerik_lsp::ide::{TextLines, WorkspaceIndex};
 use sinumerik_lsp::syntax::lines::line_ranges;
 use std::collections::BTreeMap;
 use std::fmt::Write as _;
@@ -239,6 +245,53 @@ fn check_file(corpus: &Path, relative: &str) -> Outcome {
     }
 }
 
+/// Adds the cross-file findings (W301-W307) as `check` reports them: over an index of the program
+/// and definition files of each file's folder (the folder `check` searches for callees when no
+/// `sinumerik.toml` is in use), complete.
+fn add_cross_file_findings(results: &mut [FileResult]) {
+    let config = MachineConfig::mill();
+    let folder_of = |path: &str| {
+        path.rsplit_once('/')
+            .map_or("", |(folder, _)| folder)
+            .to_string()
+    };
+    let mut indexes: BTreeMap<String, WorkspaceIndex> = BTreeMap::new();
+    for result in results.iter() {
+        let Outcome::Checked { text, .. } = &result.outcome else {
+            continue;
+        };
+        let name = result.path.rsplit('/').next().unwrap_or(&result.path);
+        if call_rank(name).is_some() || program_name_and_kind(name).1 == FileKind::Definitions {
+            let index = indexes.entry(folder_of(&result.path)).or_default();
+            index.update(
+                result.path.as_str().into(),
+                &result.path,
+                &TextLines::new(text),
+                &config,
+            );
+        }
+    }
+    for result in results.iter_mut() {
+        let Outcome::Checked { text, diagnostics } = &mut result.outcome else {
+            continue;
+        };
+        let mut index = indexes
+            .get(&folder_of(&result.path))
+            .cloned()
+            .unwrap_or_default();
+        index.set_complete(true);
+        if index.document(&result.path).is_none() {
+            index.update(
+                result.path.as_str().into(),
+                &result.path,
+                &TextLines::new(text),
+                &config,
+            );
+        }
+        diagnostics.extend(cross_file_diagnostics(&index, &result.path, &config));
+    }
+}
+
 struct CorpusRun {
     known_invalid: Vec<KnownInvalid>,
     results: Vec<FileResult>,
@@ -305,6 +358,8 @@ fn corpus_run() -> Option<&'static CorpusRun> {
                 path,
             })
             .collect();
+        let mut results = results;
+        add_cross_file_findings(&mut results);
         assert!(
             !results.is_empty(),
             "the corpus at {} is empty",

@@ -2,7 +2,8 @@
 //! and prints what it reports.
 
 use super::args::{CheckOptions, OutputFormat};
-use super::library::ProgramFiles;
+use super::check_index::CheckIndexes;
+use super::library::{FolderLibrary, ProgramFiles};
 use super::report::{self, JsonDiagnostic, ProgramLines, SeverityCounts};
 use super::source_file::read_source_file;
 use super::{EXIT_ERRORS_FOUND, EXIT_OK, EXIT_TROUBLE};
@@ -13,6 +14,7 @@ use std::fs;
 use std::io::{self, Write};
 use std::path::{Path, PathBuf};
 use std::rc::Rc;
+use std::sync::Arc;
 
 /// The most findings the human format prints for one file; the summary still counts all of them.
 pub(crate) const MAX_HUMAN_FINDINGS_PER_FILE: usize = 1_000;
@@ -48,6 +50,7 @@ pub(crate) fn run_check(
     };
 
     let files = collect_program_files(&options.paths, &mut configs, &mut problems);
+    let mut indexes = CheckIndexes::default();
 
     let mut counts = SeverityCounts::default();
     let mut n_checked_files = 0;
@@ -70,7 +73,11 @@ pub(crate) fn run_check(
         n_checked_files += 1;
         // The programs this one calls are found through its library, which lists folders and reads
         // files only when asked.
-        let library = program_files.library_for(path, configs.config_dir_for(folder).as_deref());
+        let library = Arc::new(FolderLibrary::new(
+            &program_files,
+            path,
+            configs.config_dir_for(folder).as_deref(),
+        ));
 
         // The checker returns the diagnostics sorted by line and column, the order people read in:
         // those of reading the program block by block, and those of running it.
@@ -92,8 +99,16 @@ pub(crate) fn run_check(
             library.as_ref(),
             &config.execution,
         );
-        if !run_findings.is_empty() {
+        // The findings that need the symbol tables of the program and of the files it can call
+        // (W301-W307), as the server publishes them.
+        let cross_file = indexes.findings(&library, path, &source.text, &config, |other| {
+            configs
+                .for_folder(other, &mut problems)
+                .unwrap_or_else(|| Rc::new(MachineConfig::default()))
+        });
+        if !run_findings.is_empty() || !cross_file.is_empty() {
             line_diagnostics.extend(run_findings);
+            line_diagnostics.extend(cross_file);
             line_diagnostics.sort_by_key(|item| (item.line, item.diagnostic.span.start()));
         }
         let lines = ProgramLines::new(&source.text);

@@ -40,6 +40,9 @@ struct Listing {
     programs: HashMap<String, PathBuf>,
     /// Files that may define macros, in the order the control reads them.
     definitions: Vec<PathBuf>,
+    /// Every program and definition file, in walking order: what `check` indexes for its
+    /// cross-file findings.
+    files: Vec<PathBuf>,
 }
 
 /// A folder searched for called programs.
@@ -116,6 +119,21 @@ impl ProgramFiles {
         })
         .clone()
     }
+
+    /// The text of `path` as the run reads it, without keeping it when no program has asked for it
+    /// yet: the index of `check` reads every file of the folders searched once, and a folder of
+    /// large programs must not stay in memory.
+    pub(crate) fn text_once(&self, path: &Path) -> Option<Arc<str>> {
+        let cached = lock(&self.texts)
+            .get(path)
+            .and_then(|cell| cell.get().cloned());
+        match cached {
+            Some(text) => text,
+            None => read_source_file(path)
+                .ok()
+                .map(|source| Arc::from(source.text)),
+        }
+    }
 }
 
 /// The library of a program on disk through which the analysis finds the programs it calls.
@@ -146,6 +164,37 @@ impl FolderLibrary {
             found: Mutex::default(),
             macro_files: OnceLock::new(),
         }
+    }
+
+    /// The folders searched, absolute, with whether their subfolders are: two programs with the
+    /// same scope see the same programs, and `check` builds one index for them.
+    pub(crate) fn scope(&self) -> Vec<(PathBuf, bool)> {
+        self.folders
+            .iter()
+            .map(|folder| (folder.read.clone(), folder.recursive))
+            .collect()
+    }
+
+    /// Every program and definition file of the folders searched (absolute paths, each once, in
+    /// lookup order).
+    pub(crate) fn indexed_files(&self) -> Vec<PathBuf> {
+        let mut seen = HashSet::new();
+        let mut files = Vec::new();
+        for folder in &self.folders {
+            let listing = self.files.listing(folder);
+            for relative in &listing.files {
+                let path = folder.read.join(relative);
+                if seen.insert(path.clone()) {
+                    files.push(path);
+                }
+            }
+        }
+        files
+    }
+
+    /// The run's files, shared with every program's library.
+    pub(crate) fn program_files(&self) -> &ProgramFiles {
+        &self.files
     }
 
     fn look_up(&self, name: &str) -> Option<Arc<LibraryProgram>> {
@@ -230,6 +279,14 @@ fn lock<T>(mutex: &Mutex<T>) -> MutexGuard<'_, T> {
         .unwrap_or_else(|poisoned| poisoned.into_inner())
 }
 
+/// The absolute path of a file as the library names it (see [`absolute_folder`]).
+pub(crate) fn absolute_file(path: &Path) -> PathBuf {
+    match path.file_name() {
+        Some(name) => absolute_folder(path.parent().unwrap_or(Path::new(""))).join(name),
+        None => absolute_folder(path),
+    }
+}
+
 /// `path` made absolute, with `.` and `..` resolved by the names alone (as the control's paths have
 /// no links to follow); the empty path, which `Path::parent` gives for a bare file name, is the
 /// current folder.
@@ -289,6 +346,7 @@ fn own_and_parent_folders(program: &Path, config_dir: Option<&Path>) -> Vec<Sear
 fn list_folder(folder: &Path, recursive: bool) -> Listing {
     let mut best: HashMap<String, (u8, PathBuf)> = HashMap::new();
     let mut definitions = Vec::new();
+    let mut files = Vec::new();
     let mut pending = vec![PathBuf::new()];
     while let Some(relative_folder) = pending.pop() {
         let Ok(entries) = fs::read_dir(folder.join(&relative_folder)) else {
@@ -318,8 +376,10 @@ fn list_folder(folder: &Path, recursive: bool) -> Listing {
             }
             let (program, kind) = program_name_and_kind(&file_name);
             if kind == FileKind::Definitions {
+                files.push(relative.clone());
                 definitions.push((macro_file_rank(&program), relative));
             } else if let Some(rank) = call_rank(&file_name) {
+                files.push(relative.clone());
                 // The first file of the best rank wins: files of a folder before its subfolders'.
                 if best.get(&program).is_none_or(|(known, _)| rank < *known) {
                     best.insert(program, (rank, relative));
@@ -342,6 +402,7 @@ fn list_folder(folder: &Path, recursive: bool) -> Listing {
             .into_iter()
             .map(|(_, relative)| relative)
             .collect(),
+        files,
     }
 }
 

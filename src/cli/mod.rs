@@ -27,6 +27,7 @@
 
 mod args;
 mod check;
+mod check_index;
 mod fmt;
 pub mod library;
 pub(crate) mod preview;
