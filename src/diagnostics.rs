@@ -252,8 +252,17 @@ codes! {
     AxisLeftOutAfterRotation = "A224", Information, "The first move after a frame change that rotates, scales or mirrors leaves out a geometry axis the change affects: it keeps its value in the new coordinates, so the move may move it too.";
     ArithmeticError = "A225", Error, "An arithmetic error other than a division by zero in an expression whose values are known: a result beyond the range of a double, or a function argument outside its domain (`SQRT(-1)`, `ACOS(2)`, `LN(0)`) (alarm 14051).";
     FunctionArgumentCount = "A226", Error, "A predefined function the checker computes, called with a wrong number of arguments (`POT(2,3)`; alarm 14020).";
-    IndexOutOfRange = "A227", Error, "A known index outside the dimensions of a defined array, or a negative R parameter number (alarm 17020).";
+    IndexOutOfRange = "A227", Error, "A known index outside the dimensions of a defined array, or an R parameter number that is negative or beyond the configured count `r_parameters` (MD28050; alarm 17020).";
     ModuloIncrementOnUnknownPosition = "A228", Information, "An incremental move of a modulo rotary axis whose position is not known at that point (`C=IC(720)`): usual practice for such axes, whose end point is unknown here.";
+    CircleWordWithoutCircle = "A229", Warning, "`CR=`, `AR=` or I/J/K in a block whose motion is G0 or G1: the word does nothing; a circle (G2/G3) was probably meant, or the word is left over.";
+    CircleDefinedTwice = "A230", Error, "A circle given two ways at once: I/J/K together with CR, or CR together with AR (the control rejects the block; alarm number not confirmed, 14040 is the closest).";
+    CircleRadiusZero = "A231", Error, "A circle of radius zero: G2/G3 whose centre is its start point (`I0 J0`), or a polar circle with `RP=0` (alarm 14040).";
+    IntermediatePointMissing = "A232", Error, "CIP without an intermediate point (I1/J1/K1), or with one equal to the start or the end point: no circle is defined (alarm 14920).";
+    PoleWithOneCoordinate = "A233", Warning, "A pole (G110/G111/G112) with only one coordinate of the plane (`G111 X10`): the other is taken as 0 from the command's reference, which the documentation does not confirm (reference §5.3).";
+    ModuloPositionOutOfRange = "A234", Error, "An absolute position of a modulo rotary axis outside 0 to 360 degrees (`A370`, `A=DC(-10)`): an error with MD30455 bit 0 = 0; a machine whose bit 0 converts such positions can lower the severity in `[diagnostics]`.";
+    DiameterWithoutTransverseAxis = "A235", Warning, "Diameter programming (DIAMON, DIAM90, DIAMCYCOF, ...) on a machine without a transverse axis (alarm 16510): configure a lathe with `kind = \"turn\"` in `sinumerik.toml`; reported once per program.";
+    CuttingSpeedWithoutTransverseAxis = "A236", Warning, "G96 (constant cutting speed) on a machine without a transverse axis (alarm 10870): configure a lathe with `kind = \"turn\"` in `sinumerik.toml`; reported once per program.";
+    FunctionNotEvaluated = "A237", Information, "A call of a predefined function that the checker does not compute: its result, and what depends on it, is unknown here.";
     EndlessLoop = "E401", Warning, "A loop or jump cycle that the program never leaves: its state repeats unchanged, so the control would run it forever.";
     ExecutionBudgetUsed = "E402", Information, "The configured budget of executed blocks is used up: the rest of the program is read in program order and its values are uncertain.";
     LoopPassLimit = "E403", Information, "A loop that ran more passes than the configured limit: what its body changes is unknown after it.";
