@@ -17,6 +17,7 @@
 //! r_parameters = 100            # MD28050: number of R parameters
 //! frame_offset_incr_prog = 1    # SD42440: 1 = G91 after an offset change also traverses the change, 0 = not
 //! mm_frame_fine_trans = 0       # MD18600: 1 = ATRANS and G59 write a fine translation kept by TRANS and G58
+//! modulo_range_error = 0        # MD30455 bit 0 = 0 (1 here): a modulo position outside 0..360 is an error (A234)
 //!
 //! [offsets]                     # settable work offsets G500, G54 ... G57, G505 ... G599 ($P_UIFR)
 //! G54 = { X = 100, Y = 50 }     # per axis in the basic system (degrees on rotary axes, radius on X of a lathe)
@@ -212,6 +213,7 @@ struct RawMachine {
     r_parameters: Option<i64>,
     frame_offset_incr_prog: Option<i64>,
     mm_frame_fine_trans: Option<i64>,
+    modulo_range_error: Option<i64>,
 }
 
 /// The `[check]` table.
@@ -355,6 +357,7 @@ impl RawConfig {
         }
 
         if let Some(value) = machine.r_parameters {
+            config.r_parameters_configured = true;
             config.r_parameter_count = u32::try_from(value).map_err(|_| {
                 invalid(
                     &[key("machine"), key("r_parameters")],
@@ -387,6 +390,19 @@ impl RawConfig {
                     return Err(invalid(
                         &[key("machine"), key("mm_frame_fine_trans")],
                         format!("must be 0 or 1 (MD18600), found {value}"),
+                    ))
+                }
+            };
+        }
+
+        if let Some(value) = machine.modulo_range_error {
+            config.modulo_range_error = match value {
+                0 => false,
+                1 => true,
+                _ => {
+                    return Err(invalid(
+                        &[key("machine"), key("modulo_range_error")],
+                        format!("must be 0 or 1 (MD30455 bit 0), found {value}"),
                     ))
                 }
             };

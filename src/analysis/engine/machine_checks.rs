@@ -77,13 +77,17 @@ impl Engine<'_> {
         }
     }
 
-    /// `R200=5` or `X=R200` with fewer R parameters configured (MD28050, `r_parameters`).
+    /// `R200=5` or `X=R200` with fewer R parameters configured (MD28050, `r_parameters`); without a
+    /// configured count the machine's is not known.
     fn check_r_parameter_numbers(
         &self,
         block: &Block,
         statements: &[Statement],
         diagnostics: &mut Vec<Diagnostic>,
     ) {
+        if !self.config.r_parameters_configured {
+            return;
+        }
         let count = self.config.r_parameter_count;
         let mut report = |number: u32, span: Span| {
             if number >= count {
@@ -112,7 +116,7 @@ impl Engine<'_> {
     }
 
     /// An absolute position of a modulo rotary axis outside 0..360: MD30455 bit 0 = 0 makes it an
-    /// error (reference §3.5).
+    /// error (reference §3.5); checked only where the configuration says so (`modulo_range_error`).
     fn check_modulo_positions(
         &self,
         line: &str,
@@ -120,6 +124,9 @@ impl Engine<'_> {
         statements: &[Statement],
         diagnostics: &mut Vec<Diagnostic>,
     ) {
+        if !self.config.modulo_range_error {
+            return;
+        }
         for statement in statements {
             let Statement::Address(word) = statement else {
                 continue;
