@@ -234,7 +234,7 @@ codes! {
     CircleEndNotOnCircle = "A206", Error, "A circle whose end point is farther off the circle than the tolerance MD21000/MD21010 allows (alarm 14040).";
     CircleRadiusTooSmall = "A207", Error, "A circle radius CR smaller than half the distance from start to end point.";
     CircleRadiusFullCircle = "A208", Error, "A circle with CR whose end point equals its start point (alarm 14040).";
-    CircleWithoutCentre = "A209", Error, "G2/G3 without centre, radius, opening angle or polar values.";
+    CircleWithoutCentre = "A209", Error, "G2/G3 without centre, radius, opening angle or polar values (reported in every plane, also where a subprogram inherits an unknown plane), or AR without end point and centre (`G3 AR=90`).";
     PolarWithoutPole = "A210", Information, "A polar move (AP/RP) while no pole is defined: the pole is the zero point of the workpiece coordinate system.";
     PolarWithPlaneAxis = "A211", Error, "A plane axis programmed together with AP/RP; only the perpendicular axis may join a polar block.";
     PolarRadiusNegative = "A212", Error, "A negative polar radius RP.";
@@ -243,7 +243,7 @@ codes! {
     IntermediatePointOnLine = "A215", Error, "CIP whose start, intermediate and end point lie on one line, the intermediate point not between the others (alarm 14920).";
     TurnsOutOfRange = "A216", Error, "TURN outside 0 to 999 (alarm 14048).";
     PolarAngleUnderG91 = "A217", Hint, "A plain `AP=` under G91: AP is absolute unless written `AP=IC(..)`.";
-    PolarValueAfterPoleChange = "A218", Warning, "The first polar move after a pole or plane change without AP or RP: it relies on a stored value that belongs to the old pole.";
+    PolarValueAfterPoleChange = "A218", Warning, "The first polar move after a pole or plane change without AP or RP, or with `AP=IC(..)`: it relies on a stored value that belongs to the old pole.";
     CentreLooksAbsolute = "A219", Hint, "A circle rejected for its end point whose I/J/K, read as absolute coordinates, would give a valid circle: I/J/K are incremental unless `=AC(..)`.";
     InchFeedMixed = "A220", Hint, "A program that programs F and uses both G70/G71 and G700/G710: only G700/G710 convert F.";
     UnitsChangeInContour = "A221", Warning, "G70/G71/G700/G710 switches between inch and metric while tool radius compensation G41/G42 is active.";
@@ -260,8 +260,8 @@ codes! {
     IntermediatePointMissing = "A232", Error, "CIP without an intermediate point (I1/J1/K1), or with one equal to the start or the end point: no circle is defined (alarm 14920).";
     PoleWithOneCoordinate = "A233", Warning, "A pole (G110/G111/G112) with only one coordinate of the plane (`G111 X10`): the other is taken as 0 from the command's reference, which the documentation does not confirm (reference §5.3).";
     ModuloPositionOutOfRange = "A234", Error, "An absolute position of a modulo rotary axis outside 0 to 360 degrees (`A370`, `A=DC(-10)`): reported when `modulo_range_error = 1` says that MD30455 bit 0 is 0 (real programs write `C370` for machines that convert such positions).";
-    DiameterWithoutTransverseAxis = "A235", Warning, "Diameter programming (DIAMON, DIAM90, DIAMCYCOF, ...) on a machine without a transverse axis (alarm 16510): configure a lathe with `kind = \"turn\"` in `sinumerik.toml`; reported once per program.";
-    CuttingSpeedWithoutTransverseAxis = "A236", Warning, "G96 (constant cutting speed) on a machine without a transverse axis (alarm 10870): configure a lathe with `kind = \"turn\"` in `sinumerik.toml`; reported once per program.";
+    DiameterWithoutTransverseAxis = "A235", Warning, "Diameter programming (DIAMON, DIAM90, DIAMCYCOF, ...) on a machine without a transverse axis (alarm 16510): configure a lathe with `kind = \"turn\"` in `sinumerik.toml`; reported once per program, as a warning because without a configuration file the mill is an assumption.";
+    CuttingSpeedWithoutTransverseAxis = "A236", Warning, "G96 (constant cutting speed) on a machine without a transverse axis (alarm 10870): configure a lathe with `kind = \"turn\"` in `sinumerik.toml`; reported once per program, as a warning because without a configuration file the mill is an assumption.";
     FunctionNotEvaluated = "A237", Information, "A call of a predefined function that the checker does not compute: its result, and what depends on it, is unknown here.";
     EndlessLoop = "E401", Warning, "A loop or jump cycle that the program never leaves: its state repeats unchanged, so the control would run it forever.";
     ExecutionBudgetUsed = "E402", Information, "The configured budget of executed blocks is used up: the rest of the program is read in program order and its values are uncertain.";

@@ -990,6 +990,16 @@ extensions = ["MPF", "spf", "nc"]
     }
 
     #[test]
+    fn r_parameters_and_modulo_range_error_are_marked_as_configured() {
+        let config = parse("[machine]\nr_parameters = 300\nmodulo_range_error = 1\n").unwrap();
+        assert!(config.r_parameters_configured && config.modulo_range_error);
+        let default = parse("[machine]\n").unwrap();
+        assert!(!default.r_parameters_configured && !default.modulo_range_error);
+        let error = error_of("[machine]\nmodulo_range_error = 2\n");
+        assert_eq!(error.key.as_deref(), Some("machine.modulo_range_error"));
+    }
+
+    #[test]
     fn settable_offsets_and_sd42440_are_read() {
         let config = parse(
             "[machine]\nframe_offset_incr_prog = 0\nmm_frame_fine_trans = 1\n[offsets]\nG54 = { x = 100, Y = 50.5 }\ng505 = { A = 90 }\nG500 = {}\n",
