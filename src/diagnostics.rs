@@ -234,7 +234,7 @@ codes! {
     CircleEndNotOnCircle = "A206", Error, "A circle whose end point is farther off the circle than the tolerance MD21000/MD21010 allows (alarm 14040).";
     CircleRadiusTooSmall = "A207", Error, "A circle radius CR smaller than half the distance from start to end point.";
     CircleRadiusFullCircle = "A208", Error, "A circle with CR whose end point equals its start point (alarm 14040).";
-    CircleWithoutCentre = "A209", Error, "G2/G3 without centre, radius, opening angle or polar values.";
+    CircleWithoutCentre = "A209", Error, "G2/G3 without centre, radius, opening angle or polar values (reported in every plane, also where a subprogram inherits an unknown plane), or AR without end point and centre (`G3 AR=90`).";
     PolarWithoutPole = "A210", Information, "A polar move (AP/RP) while no pole is defined: the pole is the zero point of the workpiece coordinate system.";
     PolarWithPlaneAxis = "A211", Error, "A plane axis programmed together with AP/RP; only the perpendicular axis may join a polar block.";
     PolarRadiusNegative = "A212", Error, "A negative polar radius RP.";
@@ -243,7 +243,7 @@ codes! {
     IntermediatePointOnLine = "A215", Error, "CIP whose start, intermediate and end point lie on one line, the intermediate point not between the others (alarm 14920).";
     TurnsOutOfRange = "A216", Error, "TURN outside 0 to 999 (alarm 14048).";
     PolarAngleUnderG91 = "A217", Hint, "A plain `AP=` under G91: AP is absolute unless written `AP=IC(..)`.";
-    PolarValueAfterPoleChange = "A218", Warning, "The first polar move after a pole or plane change without AP or RP: it relies on a stored value that belongs to the old pole.";
+    PolarValueAfterPoleChange = "A218", Warning, "The first polar move after a pole or plane change without AP or RP, or with `AP=IC(..)`: it relies on a stored value that belongs to the old pole.";
     CentreLooksAbsolute = "A219", Hint, "A circle rejected for its end point whose I/J/K, read as absolute coordinates, would give a valid circle: I/J/K are incremental unless `=AC(..)`.";
     InchFeedMixed = "A220", Hint, "A program that programs F and uses both G70/G71 and G700/G710: only G700/G710 convert F.";
     UnitsChangeInContour = "A221", Warning, "G70/G71/G700/G710 switches between inch and metric while tool radius compensation G41/G42 is active.";
@@ -252,8 +252,17 @@ codes! {
     AxisLeftOutAfterRotation = "A224", Information, "The first move after a frame change that rotates, scales or mirrors leaves out a geometry axis the change affects: it keeps its value in the new coordinates, so the move may move it too.";
     ArithmeticError = "A225", Error, "An arithmetic error other than a division by zero in an expression whose values are known: a result beyond the range of a double, or a function argument outside its domain (`SQRT(-1)`, `ACOS(2)`, `LN(0)`) (alarm 14051).";
     FunctionArgumentCount = "A226", Error, "A predefined function the checker computes, called with a wrong number of arguments (`POT(2,3)`; alarm 14020).";
-    IndexOutOfRange = "A227", Error, "A known index outside the dimensions of a defined array, or a negative R parameter number (alarm 17020).";
+    IndexOutOfRange = "A227", Error, "A known index outside the dimensions of a defined array, or an R parameter number that is negative or beyond the configured count `r_parameters` (MD28050; alarm 17020).";
     ModuloIncrementOnUnknownPosition = "A228", Information, "An incremental move of a modulo rotary axis whose position is not known at that point (`C=IC(720)`): usual practice for such axes, whose end point is unknown here.";
+    CircleWordWithoutCircle = "A229", Warning, "`CR=`, `AR=` or I/J/K in a block whose motion is G0 or G1: the word does nothing; a circle (G2/G3) was probably meant, or the word is left over.";
+    CircleDefinedTwice = "A230", Error, "A circle given two ways at once: I/J/K together with CR, or CR together with AR (the control rejects the block; alarm number not confirmed, 14040 is the closest).";
+    CircleRadiusZero = "A231", Error, "A circle of radius zero: G2/G3 whose centre is its start point (`I0 J0`), or a polar circle with `RP=0` (alarm 14040).";
+    IntermediatePointMissing = "A232", Error, "CIP without an intermediate point (I1/J1/K1), or with one equal to the start or the end point: no circle is defined (alarm 14920).";
+    PoleWithOneCoordinate = "A233", Warning, "A pole (G110/G111/G112) with only one coordinate of the plane (`G111 X10`): the other is taken as 0 from the command's reference, which the documentation does not confirm (reference §5.3).";
+    ModuloPositionOutOfRange = "A234", Error, "An absolute position of a modulo rotary axis outside 0 to 360 degrees (`A370`, `A=DC(-10)`): reported when `modulo_range_error = 1` says that MD30455 bit 0 is 0 (real programs write `C370` for machines that convert such positions).";
+    DiameterWithoutTransverseAxis = "A235", Warning, "Diameter programming (DIAMON, DIAM90, DIAMCYCOF, ...) on a machine without a transverse axis (alarm 16510): configure a lathe with `kind = \"turn\"` in `sinumerik.toml`; reported once per program, as a warning because without a configuration file the mill is an assumption.";
+    CuttingSpeedWithoutTransverseAxis = "A236", Warning, "G96 (constant cutting speed) on a machine without a transverse axis (alarm 10870): configure a lathe with `kind = \"turn\"` in `sinumerik.toml`; reported once per program, as a warning because without a configuration file the mill is an assumption.";
+    FunctionNotEvaluated = "A237", Information, "A call of a predefined function that the checker does not compute: its result, and what depends on it, is unknown here.";
     AngleDirectionMismatch = "A240", Warning, "A straight line defined by `ANG` and one end coordinate whose angle points away from that coordinate: the control rejects the block (reference §14.6, T109; the alarm is not documented).";
     AngleNoSolution = "A241", Error, "A contour definition by angles that has no solution: `ANG` parallel to the only given axis, or two lines of a two-block definition that are parallel (reference §14.6).";
     RoundingAndChamfer = "A242", Information, "A block that programs both a rounding and a chamfer (`RND` with `CHR` or `CHF`): only the rounding is inserted (reference §14.1).";

@@ -6,8 +6,9 @@
 //! cross-file findings W301-W307 over the program and definition files of its folder.
 //!
 //! Every file is read like the command line reads it (UTF-8, else Windows-1252; the binary `.arc`
-//! archives included) and checked with `MachineConfig::mill()`; the list file explains why no file
-//! needs another configuration.
+//! archives included) and checked with `MachineConfig::mill()`; a lathe program (one the mill reports
+//! for diameter programming or G96 without a transverse axis) is checked with `MachineConfig::turn()`
+//! too, and must get no error either way.
 //!
 //! When the corpus is not there, the tests print `corpus not found at ...; skipping` and pass.
 //! `cargo test --test corpus -- --nocapture` shows a one-line summary of the run.
@@ -140,6 +141,9 @@ enum Outcome {
     Checked {
         text: String,
         diagnostics: Vec<LineDiagnostic>,
+        /// For a lathe program (one the mill configuration reports for diameter programming or G96
+        /// without a transverse axis, A235/A236): its findings with `MachineConfig::turn()`.
+        turn: Option<Vec<LineDiagnostic>>,
     },
     Unreadable(String),
     Panicked(String),
@@ -230,10 +234,23 @@ fn check_file(corpus: &Path, relative: &str) -> Outcome {
             .extension()
             .and_then(|extension| extension.to_str()),
     );
-    match std::panic::catch_unwind(|| analyze_program(&source.text, &config, kind).diagnostics) {
-        Ok(diagnostics) => Outcome::Checked {
+    let turn = MachineConfig::turn();
+    let run = || {
+        let diagnostics = analyze_program(&source.text, &config, kind).diagnostics;
+        let lathe = diagnostics.iter().any(|item| {
+            matches!(
+                item.diagnostic.code,
+                Code::DiameterWithoutTransverseAxis | Code::CuttingSpeedWithoutTransverseAxis
+            )
+        });
+        let turn = lathe.then(|| analyze_program(&source.text, &turn, kind).diagnostics);
+        (diagnostics, turn)
+    };
+    match std::panic::catch_unwind(run) {
+        Ok((diagnostics, turn)) => Outcome::Checked {
             text: source.text,
             diagnostics,
+            turn,
         },
         Err(payload) => Outcome::Panicked(
             payload
@@ -272,7 +289,10 @@ fn add_cross_file_findings(results: &mut [FileResult]) {
         }
     }
     for result in results.iter_mut() {
-        let Outcome::Checked { text, diagnostics } = &mut result.outcome else {
+        let Outcome::Checked {
+            text, diagnostics, ..
+        } = &mut result.outcome
+        else {
             continue;
         };
         let mut index = indexes
@@ -463,4 +483,54 @@ fn glob_patterns_match_like_the_list_expects() {
     assert!(glob_matches("a/*", "a/b"));
     assert!(glob_matches("*x*x", "xx"));
     assert!(!glob_matches("*x*x", "x"));
+}
+
+#[test]
+fn lathe_programs_get_no_errors_with_the_turn_configuration() {
+    let Some(run) = corpus_run() else {
+        return;
+    };
+    let mut lathe_programs = 0;
+    let mut codes: BTreeMap<Code, usize> = BTreeMap::new();
+    let mut offending = String::new();
+    for result in &run.results {
+        let Outcome::Checked {
+            text,
+            turn: Some(turn),
+            ..
+        } = &result.outcome
+        else {
+            continue;
+        };
+        if run.known_invalid_entry(&result.path).is_some() {
+            continue;
+        }
+        lathe_programs += 1;
+        for item in turn {
+            *codes.entry(item.diagnostic.code).or_default() += 1;
+        }
+        let turn_result = FileResult {
+            path: result.path.clone(),
+            outcome: Outcome::Checked {
+                text: text.clone(),
+                diagnostics: turn.clone(),
+                turn: None,
+            },
+        };
+        if !turn_result.errors().is_empty() {
+            offending.push_str(&turn_result.describe_errors());
+        }
+    }
+    let codes: Vec<String> = codes
+        .iter()
+        .map(|(code, count)| format!("{code} {count}"))
+        .collect();
+    println!(
+        "corpus with kind = \"turn\": {lathe_programs} valid lathe programs; findings by code: {}",
+        codes.join(", ")
+    );
+    assert!(
+        offending.is_empty(),
+        "lathe programs that get errors with the turn configuration:\n{offending}"
+    );
 }

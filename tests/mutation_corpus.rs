@@ -29,122 +29,53 @@ struct Mistake {
 
 const MISTAKES: &[Mistake] = &[
     // The ten classic mistakes.
-    Mistake {
-        name: "modifier without brackets",
-        block: "X=AC 5",
-        code: "S101",
-        checked: true,
-    },
-    Mistake {
-        name: "modifier not closed",
-        block: "X=IC(3",
-        code: "S102",
-        checked: true,
-    },
-    Mistake {
-        name: "G0 and G1 in one block",
-        block: "G0 G1 X5",
-        code: "S141",
-        checked: true,
-    },
-    Mistake {
-        name: "modifier on F",
-        block: "F=IC(5)",
-        code: "S107",
-        checked: true,
-    },
-    Mistake {
-        name: "G2 without centre",
-        block: "G2 X5 Y5",
-        code: "A209",
-        checked: false,
-    },
-    Mistake {
-        name: "unknown G function",
-        block: "G999",
-        code: "S144",
-        checked: true,
-    },
-    Mistake {
-        name: "string not closed",
-        block: "MSG(\"CHECK)",
-        code: "S132",
-        checked: true,
-    },
-    Mistake {
-        name: "two frame instructions",
-        block: "TRANS X1 ROT Z45",
-        code: "S141",
-        checked: true,
-    },
-    Mistake {
-        name: "CR on a G1 line",
-        block: "G1 X5 CR=5",
-        code: "none",
-        checked: false,
-    },
-    Mistake {
-        name: "GOTOF to a missing label",
-        block: "GOTOF NO_SUCH_LABEL",
-        code: "none",
-        checked: false,
-    },
+    mistake("modifier without brackets", "X=AC 5", "S101"),
+    mistake("modifier not closed", "X=IC(3", "S102"),
+    mistake("G0 and G1 in one block", "G0 G1 X5", "S141"),
+    mistake("modifier on F", "F=IC(5)", "S107"),
+    mistake("G2 without centre", "G2 X5 Y5", "A209"),
+    mistake("unknown G function", "G999", "S144"),
+    mistake("string not closed", "MSG(\"CHECK)", "S132"),
+    mistake("two frame instructions", "TRANS X1 ROT Z45", "S141"),
+    mistake("CR on a G1 line", "G1 X5 CR=5", "A229"),
+    mistake("GOTOF to a missing label", "GOTOF NO_SUCH_LABEL", "W304"),
     // The mistakes of issue 18's list.
-    Mistake {
-        name: "division by zero",
-        block: "R1=1/0",
-        code: "A205",
-        checked: true,
-    },
-    Mistake {
-        name: "SQRT of a negative number",
-        block: "R1=SQRT(-1)",
-        code: "A225",
-        checked: true,
-    },
-    Mistake {
-        name: "wrong argument count",
-        block: "R1=POT(2,3)",
-        code: "A226",
-        checked: true,
-    },
-    Mistake {
-        name: "value without =",
-        block: "Z (R1+2)",
-        code: "S151",
-        checked: true,
-    },
-    Mistake {
-        name: "I on a G0 line",
-        block: "G0 X5 I5",
-        code: "none",
-        checked: false,
-    },
-    Mistake {
-        name: "circle given two ways",
-        block: "G2 X5 Y5 I5 J0 CR=5",
-        code: "none",
-        checked: false,
-    },
-    Mistake {
-        name: "CIP without intermediate point",
-        block: "CIP X5 Y5",
-        code: "none",
-        checked: false,
-    },
-    Mistake {
-        name: "pole with one coordinate",
-        block: "G111 X10",
-        code: "none",
-        checked: false,
-    },
-    Mistake {
-        name: "AR without end point",
-        block: "G3 AR=90",
-        code: "none",
-        checked: false,
-    },
+    mistake("division by zero", "R1=1/0", "A205"),
+    mistake("SQRT of a negative number", "R1=SQRT(-1)", "A225"),
+    mistake("wrong argument count", "R1=POT(2,3)", "A226"),
+    mistake("value without =", "Z (R1+2)", "S151"),
+    mistake("AC value not in brackets", "X=AC 1.2+SIN(30)", "S101"),
+    mistake("frame value without =", "TRANS X _CPA", "S151"),
+    mistake("I on a G0 line", "G0 X5 I5", "A229"),
+    mistake("circle given two ways", "G2 X5 Y5 I5 J0 CR=5", "A230"),
+    partly("radius zero", "G2 X=IC(0) Y=IC(0) I0 J0", "A231"),
+    mistake("CIP without intermediate point", "CIP X5 Y5", "A232"),
+    partly("pole with one coordinate", "G111 X10", "A233"),
+    partly("AR without end point", "G3 AR=90", "A209"),
+    partly("DIAMON on a mill", "DIAMON", "A235"),
+    partly("G96 on a mill", "G96 S100", "A236"),
 ];
+
+/// A kind of mistake the checker catches in some programs only: where the plane or the positions
+/// of a subprogram are inherited, or where the program has been reported once already.
+const fn partly(name: &'static str, block: &'static str, code: &'static str) -> Mistake {
+    Mistake {
+        name,
+        block,
+        code,
+        checked: false,
+    }
+}
+
+/// A kind of mistake the checker catches everywhere.
+const fn mistake(name: &'static str, block: &'static str, code: &'static str) -> Mistake {
+    Mistake {
+        name,
+        block,
+        code,
+        checked: true,
+    }
+}
 
 /// The 0-based index of the first line that is a G0 or G1 block, if any.
 fn first_linear_block(lines: &[&str]) -> Option<usize> {

@@ -16,11 +16,13 @@ use std::sync::Arc;
 
 mod assignments;
 mod checks;
+mod circle_checks;
 mod circles;
 mod contours;
 mod frame_variables;
 mod indirect_axes;
 mod join;
+mod machine_checks;
 mod macros;
 pub use contours::{ContourRequest, CornerElement, OpenAngle};
 pub mod spindle;
@@ -180,6 +182,8 @@ struct ProgramMemory {
     /// The geometry slots (X, Y, Z) whose mapping a rotating, scaling or mirroring frame change has
     /// altered since the last move.
     rotated_slots: [bool; 3],
+    /// Whether diameter programming or G96 without a transverse axis has been reported (once).
+    transverse_reported: bool,
 }
 
 /// What an [`Engine`] carries from one block to the next, detached from the configuration: a
@@ -789,6 +793,7 @@ impl<'a> Engine<'a> {
             statements,
             diagnostics,
         );
+        self.check_machine_words(line, block, statements, diagnostics);
         if self.state.plane_index() != plane_before {
             // The stored AP and RP belong to the old plane (reference §5.2).
             self.state.polar_angle = None;
@@ -858,7 +863,20 @@ impl<'a> Engine<'a> {
         if moves_path && matches!(motion.as_ref(), "G2" | "G3" | "CIP") {
             circle_words.span = statements_span(statements);
         }
-        let arc = if moves_path {
+        let circle_rejected = self.check_circle_words(
+            &circle_checks::CircleBlock {
+                line,
+                statements,
+                motion: motion.as_ref(),
+                moves_path,
+                frame_or_pole: functions.frame_or_pole,
+                words: &circle_words,
+                polar: &polar,
+                start_positions: &start_positions,
+            },
+            diagnostics,
+        );
+        let arc = if moves_path && !circle_rejected {
             match motion.as_ref() {
                 // A polar circle turns around the pole; the start must lie on it (reference §5.2).
                 "G2" | "G3" if polar_move => polar_circle_centre.and_then(|centre| {

@@ -17,6 +17,7 @@
 //! r_parameters = 100            # MD28050: number of R parameters
 //! frame_offset_incr_prog = 1    # SD42440: 1 = G91 after an offset change also traverses the change, 0 = not
 //! mm_frame_fine_trans = 0       # MD18600: 1 = ATRANS and G59 write a fine translation kept by TRANS and G58
+//! modulo_range_error = 0        # MD30455 bit 0 = 0 (1 here): a modulo position outside 0..360 is an error (A234)
 //!
 //! [offsets]                     # settable work offsets G500, G54 ... G57, G505 ... G599 ($P_UIFR)
 //! G54 = { X = 100, Y = 50 }     # per axis in the basic system (degrees on rotary axes, radius on X of a lathe)
@@ -218,6 +219,7 @@ struct RawMachine {
     r_parameters: Option<i64>,
     frame_offset_incr_prog: Option<i64>,
     mm_frame_fine_trans: Option<i64>,
+    modulo_range_error: Option<i64>,
 }
 
 /// The `[check]` table.
@@ -361,6 +363,7 @@ impl RawConfig {
         }
 
         if let Some(value) = machine.r_parameters {
+            config.r_parameters_configured = true;
             config.r_parameter_count = u32::try_from(value).map_err(|_| {
                 invalid(
                     &[key("machine"), key("r_parameters")],
@@ -393,6 +396,19 @@ impl RawConfig {
                     return Err(invalid(
                         &[key("machine"), key("mm_frame_fine_trans")],
                         format!("must be 0 or 1 (MD18600), found {value}"),
+                    ))
+                }
+            };
+        }
+
+        if let Some(value) = machine.modulo_range_error {
+            config.modulo_range_error = match value {
+                0 => false,
+                1 => true,
+                _ => {
+                    return Err(invalid(
+                        &[key("machine"), key("modulo_range_error")],
+                        format!("must be 0 or 1 (MD30455 bit 0), found {value}"),
                     ))
                 }
             };
@@ -994,6 +1010,16 @@ extensions = ["MPF", "spf", "nc"]
 
         let error = error_of("[diagnostics]\nS101 = \"error\"\ns101 = \"hint\"\n");
         assert!(error.message.contains("listed twice"), "{error}");
+    }
+
+    #[test]
+    fn r_parameters_and_modulo_range_error_are_marked_as_configured() {
+        let config = parse("[machine]\nr_parameters = 300\nmodulo_range_error = 1\n").unwrap();
+        assert!(config.r_parameters_configured && config.modulo_range_error);
+        let default = parse("[machine]\n").unwrap();
+        assert!(!default.r_parameters_configured && !default.modulo_range_error);
+        let error = error_of("[machine]\nmodulo_range_error = 2\n");
+        assert_eq!(error.key.as_deref(), Some("machine.modulo_range_error"));
     }
 
     #[test]

@@ -87,6 +87,13 @@ pub struct MachineConfig {
     pub max_block_length: usize,
     /// Number of R parameters (MD28050 `MM_NUM_R_PARAM`).
     pub r_parameter_count: u32,
+    /// Whether `r_parameters` was configured: the default count is a guess (many machines have more
+    /// than 100), so R parameters beyond it are reported only when the count was given.
+    pub r_parameters_configured: bool,
+    /// MD30455 `MISC_FUNCTION_MASK` bit 0 = 0 on the modulo axes: an absolute position outside 0..360
+    /// is an error (A234). Off by default: real programs (CAM output in particular) write `C370` for
+    /// machines that convert such positions, and the default axes are a guess.
+    pub modulo_range_error: bool,
     /// Severities chosen by the user for individual diagnostic codes.
     pub severity_overrides: BTreeMap<Code, Severity>,
     /// File extensions (without dot, compared case-insensitively) that `check` reads from folders.
@@ -138,6 +145,8 @@ impl MachineConfig {
             max_skip_level: 9,
             max_block_length: 512,
             r_parameter_count: 100,
+            r_parameters_configured: false,
+            modulo_range_error: false,
             severity_overrides: BTreeMap::new(),
             extensions: vec!["mpf".to_string(), "spf".to_string()],
             settable_offsets: BTreeMap::new(),

@@ -116,9 +116,16 @@ impl Engine<'_> {
                 ));
             }
         }
-        if std::mem::take(&mut self.memory.pole_changed)
-            && (polar.angle.is_none() || polar.radius.is_none())
-        {
+        let pole_changed = std::mem::take(&mut self.memory.pole_changed);
+        if pole_changed && matches!(polar.angle, Some((_, true))) && polar.radius.is_some() {
+            // `AP=IC(..)` adds to the stored angle, and after a pole or plane change no angle is
+            // stored that belongs to the new pole (reference §5.2).
+            diagnostics.push(Diagnostic::new(
+                Code::PolarValueAfterPoleChange,
+                polar.span.unwrap_or_default(),
+                "`AP=IC(..)` adds to the stored polar angle, but after a pole or plane change no angle for the new pole is stored: write the first AP after the change absolute",
+            ));
+        } else if pole_changed && (polar.angle.is_none() || polar.radius.is_none()) {
             let missing = if polar.angle.is_none() { "AP" } else { "RP" };
             diagnostics.push(Diagnostic::new(
                 Code::PolarValueAfterPoleChange,

@@ -183,6 +183,16 @@ impl Engine<'_> {
             // Centre, end point and angle together over-determine the circle; not followed.
             return None;
         }
+        if !end_written {
+            // `G3 AR=90` alone: neither the end point nor the centre is given, so the angle has
+            // nothing to open from; the missing definition is the mistake, not the angle.
+            diagnostics.push(Diagnostic::new(
+                Code::CircleWithoutCentre,
+                span,
+                "AR needs the end point (X, Y, Z) or the centre (I, J, K) of the circle: neither is given",
+            ));
+            return None;
+        }
         let end = self.state.positions[first].zip(self.state.positions[second]);
         let (Some(start), Some(end), Some(angle)) = (start, end, words.opening_angle_value) else {
             return None;

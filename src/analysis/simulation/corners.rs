@@ -312,7 +312,7 @@ impl<'c> CornerStage<'c> {
         // The element's time follows the technology it takes (§14.5): that block's feed type and
         // spindle, with the element's own feed. Under inverse time (G93) a feed of the element is
         // not a time per block, so its time stays unknown.
-        movement.timing = technology.movement.timing.clone();
+        movement.timing = technology.movement.timing;
         movement.timing.dwell = None;
         movement.timing.feed = feed;
         movement.timing.programmed_feed = match movement.timing.feed_type {
