@@ -21,12 +21,12 @@ use sinumerik_lsp::syntax::{parse_line, SyntaxContext};
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 
-/// The shares this build reaches at least (93.3 % resolved, 91.1 % without uncertain axes over 58,909
+/// The shares this build reaches at least (94.9 % resolved, 92.7 % without uncertain axes over 58,084
 /// executed moves), so that a change that resolves less fails. The goal is 95 % and 60 %; the rest
 /// depends on data the programs do not contain (global user data, tool and machine data, operator R
 /// parameters), see docs/execution.md.
-const MIN_RESOLVED_SHARE: f64 = 0.93;
-const MIN_CERTAIN_SHARE: f64 = 0.905;
+const MIN_RESOLVED_SHARE: f64 = 0.945;
+const MIN_CERTAIN_SHARE: f64 = 0.92;
 
 fn corpus_dir() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/corpus/real")
