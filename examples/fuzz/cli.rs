@@ -7,14 +7,16 @@ use sinumerik_lsp::cli::run_with_output;
 use std::ffi::OsString;
 use std::path::PathBuf;
 
-/// The files one thread uses: the program and a configuration for each machine.
+/// The files one thread uses: the program and a configuration for each machine, in a folder of the
+/// thread's own. `check` searches the program's folder for the programs it calls, so the program must
+/// not lie among whatever else the temporary folder holds: each case would read all of it.
 fn scratch_path(name: &str) -> PathBuf {
     let thread = format!("{:?}", std::thread::current().id());
     let thread: String = thread.chars().filter(char::is_ascii_digit).collect();
-    std::env::temp_dir().join(format!(
-        "sinumerik-fuzz-{}-{thread}-{name}",
-        std::process::id()
-    ))
+    let folder =
+        std::env::temp_dir().join(format!("sinumerik-fuzz-{}-{thread}", std::process::id()));
+    let _ = std::fs::create_dir_all(&folder);
+    folder.join(name)
 }
 
 /// Runs the command line on `text` in every output format and checks what it prints. The scratch
@@ -23,6 +25,9 @@ pub fn check_cli(text: &str) -> Result<(), String> {
     let result = run_every_format(text);
     for name in ["program.mpf", "mill.toml", "turn.toml"] {
         let _ = std::fs::remove_file(scratch_path(name));
+    }
+    if let Some(folder) = scratch_path("program.mpf").parent() {
+        let _ = std::fs::remove_dir(folder);
     }
     result
 }
