@@ -33,6 +33,7 @@ mod ext;
 mod framing;
 mod frozen_bytes;
 mod hover;
+mod hover_resolution;
 mod inlay;
 mod json_string;
 mod library;
