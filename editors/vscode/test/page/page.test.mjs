@@ -292,7 +292,7 @@ test('the moves of a called program are drawn, and a call line highlights every 
   const [cx, cy] = await screen(42, 30);
   await page.hover(ox + cx, oy + cy + 1);
   assert.equal(await page.evaluate('document.getElementById("tip").textContent'),
-    'N20, pass 3 of 3, SLOT.SPF line 4  G1  → X50 Y30 Z-2 F400\ncalled at calls_mill.mpf line 8');
+    'N20, pass 3 of 3, SLOT.SPF line 4  G1  → X50 Y30 Z-2 F400  3 s\ncalled at calls_mill.mpf line 8');
   const reveals = await page.evaluate('harness.sent.filter((m) => m.type === "reveal").length');
   await page.mouse('mousePressed', ox + cx, oy + cy + 1);
   await page.mouse('mouseReleased', ox + cx, oy + cy + 1);
