@@ -6,6 +6,10 @@
 //!
 //! When the corpus is not there, the test prints `corpus not found at ...; skipping` and passes.
 
+#[path = "support/corpus_files.rs"]
+mod corpus_files;
+
+use corpus_files::{corpus_dir, program_files};
 use sinumerik_lsp::analysis::execution::entry::RunSetup;
 use sinumerik_lsp::analysis::execution::{
     execute_collecting, execute_programmed, ExecutedMove, ExecutionOptions,
@@ -17,28 +21,6 @@ use sinumerik_lsp::config::MachineConfig;
 use sinumerik_lsp::diagnostics::Severity;
 use sinumerik_lsp::syntax::lines::line_ranges;
 use std::collections::HashMap;
-use std::path::{Path, PathBuf};
-
-fn corpus_dir() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/corpus/real")
-}
-
-fn program_files(dir: &Path, out: &mut Vec<PathBuf>) {
-    let mut entries: Vec<PathBuf> = std::fs::read_dir(dir)
-        .expect("readable corpus folder")
-        .map(|entry| entry.expect("readable entry").path())
-        .collect();
-    entries.sort();
-    for path in entries {
-        if path.is_dir() {
-            program_files(&path, out);
-        } else if path.extension().is_some_and(|extension| {
-            extension.eq_ignore_ascii_case("mpf") || extension.eq_ignore_ascii_case("spf")
-        }) {
-            out.push(path);
-        }
-    }
-}
 
 /// Whether the code part of `line` (before `;`) writes `RND=`, `CHF=` or `CHR=`.
 fn programs_corner(line: &str) -> bool {

@@ -9,6 +9,10 @@
 //!
 //! When the corpus is not there, the test prints `corpus not found at ...; skipping` and passes.
 
+#[path = "support/corpus_files.rs"]
+mod corpus_files;
+
+use corpus_files::{corpus_dir, program_files};
 use sinumerik_lsp::analysis::execution::{execute_collecting, ExecutedMove, ExecutionOptions};
 use sinumerik_lsp::analysis::library::{MemoryLibrary, ProgramLibrary};
 use sinumerik_lsp::analysis::ProgramKind;
@@ -19,7 +23,7 @@ use sinumerik_lsp::syntax::ast::{CallKind, Statement};
 use sinumerik_lsp::syntax::lines::line_ranges;
 use sinumerik_lsp::syntax::{parse_line, SyntaxContext};
 use std::collections::BTreeSet;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 const MODELLED: [&str; 13] = [
     "CYCLE81", "CYCLE82", "CYCLE83", "CYCLE84", "CYCLE840", "CYCLE85", "CYCLE86", "CYCLE87",
@@ -35,27 +39,6 @@ const CYCLE_CODES: [Code; 6] = [
     Code::CycleDepthDisagrees,
     Code::GridWithoutRowsOrColumns,
 ];
-
-fn corpus_dir() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/corpus/real")
-}
-
-fn program_files(dir: &Path, out: &mut Vec<PathBuf>) {
-    let mut entries: Vec<PathBuf> = std::fs::read_dir(dir)
-        .expect("readable corpus folder")
-        .map(|entry| entry.expect("readable entry").path())
-        .collect();
-    entries.sort();
-    for path in entries {
-        if path.is_dir() {
-            program_files(&path, out);
-        } else if path.extension().is_some_and(|extension| {
-            extension.eq_ignore_ascii_case("mpf") || extension.eq_ignore_ascii_case("spf")
-        }) {
-            out.push(path);
-        }
-    }
-}
 
 /// The program files of a folder as a library, by file name.
 fn folder_library(dir: &Path) -> MemoryLibrary {

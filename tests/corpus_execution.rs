@@ -6,6 +6,10 @@
 //!
 //! When the corpus is not there, the test prints `corpus not found at ...; skipping` and passes.
 
+#[path = "support/corpus_files.rs"]
+mod corpus_files;
+
+use corpus_files::{corpus_dir, glob_matches, known_invalid, program_files};
 use sinumerik_lsp::analysis::axis_lookup::AxisLookup;
 use sinumerik_lsp::analysis::execution::{execute_collecting, ExecutedMove, ExecutionOptions};
 use sinumerik_lsp::analysis::library::MemoryLibrary;
@@ -27,56 +31,6 @@ use std::path::{Path, PathBuf};
 /// parameters), see docs/execution.md.
 const MIN_RESOLVED_SHARE: f64 = 0.945;
 const MIN_CERTAIN_SHARE: f64 = 0.92;
-
-fn corpus_dir() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/corpus/real")
-}
-
-/// `*` in a pattern of the known-invalid list matches any run of characters.
-fn glob_matches(pattern: &str, text: &str) -> bool {
-    match pattern.split_once('*') {
-        None => pattern == text,
-        Some((head, tail)) => {
-            text.starts_with(head)
-                && text.len() >= head.len() + tail.len()
-                && (0..=text.len() - head.len()).any(|skip| {
-                    text.get(head.len() + skip..)
-                        .is_some_and(|rest| glob_matches(tail, rest))
-                })
-        }
-    }
-}
-
-fn known_invalid() -> Vec<String> {
-    let list = std::fs::read_to_string(
-        Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/corpus_known_invalid.txt"),
-    )
-    .expect("the known-invalid list is readable");
-    list.lines()
-        .filter(|line| !line.trim().is_empty() && !line.starts_with('#'))
-        .filter_map(|line| {
-            line.split_once('\t')
-                .map(|(path, _)| path.trim().to_string())
-        })
-        .collect()
-}
-
-fn program_files(dir: &Path, out: &mut Vec<PathBuf>) {
-    let mut entries: Vec<PathBuf> = std::fs::read_dir(dir)
-        .expect("readable corpus folder")
-        .map(|entry| entry.expect("readable entry").path())
-        .collect();
-    entries.sort();
-    for path in entries {
-        if path.is_dir() {
-            program_files(&path, out);
-        } else if path.extension().is_some_and(|extension| {
-            extension.eq_ignore_ascii_case("mpf") || extension.eq_ignore_ascii_case("spf")
-        }) {
-            out.push(path);
-        }
-    }
-}
 
 /// The program files of a folder as a library, by file name.
 fn folder_library(dir: &Path, texts: &mut HashMap<PathBuf, String>) -> MemoryLibrary {

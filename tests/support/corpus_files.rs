@@ -1,6 +1,9 @@
 //! The real programs of `../shared/corpus/real` for tests: where they are, which are known to be
 //! invalid (`tests/corpus_known_invalid.txt`), and the program files of a folder in a stable order.
 
+// Each test file uses the part it needs.
+#![allow(dead_code)]
+
 use std::path::{Path, PathBuf};
 
 pub fn corpus_dir() -> PathBuf {
