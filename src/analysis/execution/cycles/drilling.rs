@@ -104,6 +104,20 @@ pub(super) fn plan(name: &str, arguments: &[Argument]) -> Outcome {
     let safety = rfp + sdis.abs() * (rfp - dp).signum();
     // A dwell whose time is not known is left out: it changes no position.
     let dwell = |index| value(index).filter(|time| *time != 0.0).map(Step::Dwell);
+    // In to the depth, the dwell DTB, out to the safety plane at a feed, up to the retraction plane:
+    // the sequence of tapping, reaming and boring with a dwell, which differ in their feeds only.
+    let in_dwell_out = |feed_in, feed_out| -> Vec<Step> {
+        [
+            Some(Step::Rapid(safety)),
+            Some(Step::Feed(dp, feed_in)),
+            dwell(5),
+            Some(Step::Feed(safety, feed_out)),
+            Some(Step::Rapid(rtp)),
+        ]
+        .into_iter()
+        .flatten()
+        .collect()
+    };
     let mut feed_after_unknown = false;
     let steps: Vec<Step> = match name {
         "CYCLE81" => vec![
@@ -130,28 +144,10 @@ pub(super) fn plan(name: &str, arguments: &[Argument]) -> Outcome {
         },
         // Rigid tapping (G331/G332): the feed is the pitch times the spindle speed, not known here;
         // the retraction goes back to the safety plane.
-        "CYCLE84" => [
-            Some(Step::Rapid(safety)),
-            Some(Step::Feed(dp, Feed::Unknown)),
-            dwell(5),
-            Some(Step::Feed(safety, Feed::Unknown)),
-            Some(Step::Rapid(rtp)),
-        ]
-        .into_iter()
-        .flatten()
-        .collect(),
+        "CYCLE84" => in_dwell_out(Feed::Unknown, Feed::Unknown),
         // Tapping with a compensating chuck (G63) at the programmed feed, out with the spindle
         // reversed.
-        "CYCLE840" => [
-            Some(Step::Rapid(safety)),
-            Some(Step::Feed(dp, Feed::Modal)),
-            dwell(5),
-            Some(Step::Feed(safety, Feed::Modal)),
-            Some(Step::Rapid(rtp)),
-        ]
-        .into_iter()
-        .flatten()
-        .collect(),
+        "CYCLE840" => in_dwell_out(Feed::Modal, Feed::Modal),
         // Reaming: in at FFR, out to the safety plane at RFF.
         "CYCLE85" => {
             let mut feed = |index| match value(index) {
@@ -166,16 +162,7 @@ pub(super) fn plan(name: &str, arguments: &[Argument]) -> Outcome {
                 }
             };
             let (feed_in, feed_out) = (feed(6), feed(7));
-            [
-                Some(Step::Rapid(safety)),
-                Some(Step::Feed(dp, feed_in)),
-                dwell(5),
-                Some(Step::Feed(safety, feed_out)),
-                Some(Step::Rapid(rtp)),
-            ]
-            .into_iter()
-            .flatten()
-            .collect()
+            in_dwell_out(feed_in, feed_out)
         }
         // Boring with an oriented spindle stop: lift off by RPA, RPO, RPAP, retract, and move back
         // to the hole's axis at the retraction plane.
@@ -214,16 +201,7 @@ pub(super) fn plan(name: &str, arguments: &[Argument]) -> Outcome {
         .flatten()
         .collect(),
         // Boring with a dwell, out at the feed.
-        "CYCLE89" => [
-            Some(Step::Rapid(safety)),
-            Some(Step::Feed(dp, Feed::Modal)),
-            dwell(5),
-            Some(Step::Feed(safety, Feed::Modal)),
-            Some(Step::Rapid(rtp)),
-        ]
-        .into_iter()
-        .flatten()
-        .collect(),
+        "CYCLE89" => in_dwell_out(Feed::Modal, Feed::Modal),
         _ => return unknown,
     };
     Outcome {
