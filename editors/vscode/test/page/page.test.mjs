@@ -78,8 +78,17 @@ const UNCERTAIN = hex('#d7a600');
 const HIGHLIGHT = hex('#ffd500');
 const BACKGROUND = hex('#1e1e1e');
 
+/** Whether a pixel shows `colour` over the background `under`, covering at least 60% of the pixel: a
+ * line of one or 1.5 pixels on a pixel boundary is blended into its neighbours by antialiasing. */
+function covers(pixel, colour, under = BACKGROUND) {
+  for (let a = 1; a >= 0.6; a -= 0.05) {
+    if (near(pixel, colour.map((c, k) => under[k] + a * (c - under[k])), 30)) return true;
+  }
+  return false;
+}
+
 async function hasColour(x, y, colour, radius = 2) {
-  return (await colours(x, y, radius)).some((c) => near(c, colour));
+  return (await colours(x, y, radius)).some((c) => covers(c, colour));
 }
 
 before(async () => {
