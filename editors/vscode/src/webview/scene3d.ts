@@ -289,3 +289,27 @@ export function thin(paths: Paths3d, tolerance: number): Thinned {
   for (const [group, pen] of pens) if (pen.out.length) groups.set(group, Float32Array.from(pen.out));
   return { groups, drawn, thinned };
 }
+
+/** Fewer segments for the frames while the user orbits, pans or zooms a large toolpath: runs of
+ * `stride` drawn segments of a group become one, from the run's first start to its last end, so
+ * that at most about `budget` segments are drawn; the full drawing returns when the user lets go. */
+export function coarsen(groups: Map<number, Float32Array>, budget: number): Map<number, Float32Array> {
+  let total = 0;
+  for (const points of groups.values()) total += points.length / 6;
+  const stride = Math.ceil(total / Math.max(1, budget));
+  if (stride <= 1) return groups;
+  const out = new Map<number, Float32Array>();
+  for (const [group, points] of groups) {
+    const count = points.length / 6;
+    const runs = Math.ceil(count / stride);
+    const coarse = new Float32Array(runs * 6);
+    for (let run = 0; run < runs; run++) {
+      const first = run * stride;
+      const last = Math.min(count, first + stride) - 1;
+      coarse.set(points.subarray(first * 6, first * 6 + 3), run * 6);
+      coarse.set(points.subarray(last * 6 + 3, last * 6 + 6), run * 6 + 3);
+    }
+    out.set(group, coarse);
+  }
+  return out;
+}

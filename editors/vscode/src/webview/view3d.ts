@@ -12,19 +12,23 @@ import { LineSegments2 } from 'three/examples/jsm/lines/LineSegments2.js';
 import { LineSegmentsGeometry } from 'three/examples/jsm/lines/LineSegmentsGeometry.js';
 import { CHUNK, HOLE_RADIUS_PX, KIND_CONDITIONAL, KIND_INSERTED } from './geometry';
 import { IMPOSSIBLE_MARK_PX, styleOf, type Palette } from './render';
-import { thin, type Paths3d } from './scene3d';
+import { coarsen, thin, type Paths3d } from './scene3d';
 
 /** Segments of the highlight beyond this many are drawn one pixel wide (wide lines cost a quad each). */
 const MAX_WIDE_HIGHLIGHT = 200_000;
 /** The thinning is computed again when the size of a pixel changed by more than this factor. */
 const RETHIN_FACTOR = 2;
 const MIN_PIXELS = 0.75;
+/** Segments drawn in the frames while the user orbits, pans or zooms (see `coarsen`). */
+const INTERACTION_BUDGET = 40_000;
 
 export interface Stats3d {
   drawn: number;
   thinned: number;
   renderMs: number;
   thinMs: number;
+  /** The last frame drew the coarse drawing of an interaction. */
+  coarse: boolean;
 }
 
 /** A texture of a ring or a cross, drawn once on a small canvas, for points of a constant size. */
@@ -56,6 +60,9 @@ export class View3d {
   readonly controls: OrbitControls;
   private readonly scene = new THREE.Scene();
   private readonly content = new THREE.Group();
+  /** The coarse drawing for the frames of an interaction with a large toolpath (empty otherwise). */
+  private readonly coarse = new THREE.Group();
+  private interacting = false;
   private readonly overlay = new THREE.Group();
   private paths: Paths3d | null = null;
   private chunkBox = new Float32Array(0);
@@ -70,7 +77,7 @@ export class View3d {
   private readonly crossTexture = spriteTexture('cross', 2 * IMPOSSIBLE_MARK_PX + 4);
   /** The user orbited, panned or zoomed: new data and a resize no longer refit. */
   userMoved = false;
-  stats: Stats3d = { drawn: 0, thinned: 0, renderMs: 0, thinMs: 0 };
+  stats: Stats3d = { drawn: 0, thinned: 0, renderMs: 0, thinMs: 0, coarse: false };
 
   constructor(readonly canvas: HTMLCanvasElement, private readonly changed: () => void) {
     this.renderer = new THREE.WebGLRenderer({ canvas, antialias: true });
@@ -83,7 +90,14 @@ export class View3d {
       if (!this.fitting) this.userMoved = true;
       this.changed();
     });
-    this.scene.add(this.content, this.overlay);
+    this.controls.addEventListener('start', () => {
+      this.interacting = true;
+    });
+    this.controls.addEventListener('end', () => {
+      this.interacting = false;
+      this.changed();
+    });
+    this.scene.add(this.content, this.coarse, this.overlay);
   }
 
   /** The world position (the program's coordinates) of a point relative to the paths' origin. */
@@ -194,14 +208,22 @@ export class View3d {
     const tolerance = this.worldPerPixel() * MIN_PIXELS;
     this.builtTolerance = tolerance;
     const thinned = thin(paths, tolerance);
-    for (const [group, points] of thinned.groups) {
+    this.addLines(this.content, thinned.groups, palette);
+    this.clear(this.coarse);
+    if (thinned.drawn > INTERACTION_BUDGET) this.addLines(this.coarse, coarsen(thinned.groups, INTERACTION_BUDGET), palette);
+    this.addMarks(paths, palette, thinned, started);
+  }
+
+  /** One line object per group (style), in the palette's colours and dashes. */
+  private addLines(target: THREE.Group, groups: Map<number, Float32Array>, palette: Palette): void {
+    for (const [group, points] of groups) {
       const style = palette[styleOf(group)];
       const faded = (group & KIND_CONDITIONAL) !== 0;
       if (group & KIND_INSERTED) {
         const geometry = new LineSegmentsGeometry().setPositions(points);
         const material = new LineMaterial({ color: style.colour, linewidth: style.width, transparent: faded, opacity: faded ? 0.5 : 1 });
         material.resolution.set(this.width, this.height);
-        this.content.add(new LineSegments2(geometry, material));
+        target.add(new LineSegments2(geometry, material));
         continue;
       }
       const geometry = new THREE.BufferGeometry();
@@ -222,8 +244,12 @@ export class View3d {
         material = new THREE.LineBasicMaterial({ color: style.colour });
       }
       if (faded) Object.assign(material, { transparent: true, opacity: 0.5 });
-      this.content.add(new THREE.LineSegments(geometry, material));
+      target.add(new THREE.LineSegments(geometry, material));
     }
+  }
+
+  /** The holes, the marks of circles that cannot exist, and the statistics of the last build. */
+  private addMarks(paths: Paths3d, palette: Palette, thinned: { drawn: number; thinned: number }, started: number): void {
     this.addPoints(this.content, paths.holePoints, this.ringTexture, 2 * HOLE_RADIUS_PX + 4, (i) => {
       const move = paths.holeMove[i];
       const s = paths.firstSegment[move];
@@ -277,8 +303,9 @@ export class View3d {
       const o = (points.length / 6 - 1) * 6;
       if (moves.length <= maxMarkers || i === moves.length - 1) ends.push(points[o + 3], points[o + 4], points[o + 5]);
     }
+    const chosen = new Set(Array.from(moves));
     for (let h = 0; h < paths.holeMove.length; h++) {
-      if (Array.prototype.includes.call(moves, paths.holeMove[h])) holes.push(paths.holePoints[h * 3], paths.holePoints[h * 3 + 1], paths.holePoints[h * 3 + 2]);
+      if (chosen.has(paths.holeMove[h])) holes.push(paths.holePoints[h * 3], paths.holePoints[h * 3 + 1], paths.holePoints[h * 3 + 2]);
     }
     const style = palette.highlight;
     const segments = Float32Array.from(points);
@@ -304,7 +331,11 @@ export class View3d {
     const perPixel = this.worldPerPixel();
     const ratio = perPixel * MIN_PIXELS / this.builtTolerance;
     if (palette !== this.palette || !(ratio < RETHIN_FACTOR && ratio > 1 / RETHIN_FACTOR)) this.rebuild(palette);
-    for (const group of [this.content, this.overlay]) {
+    const coarse = this.interacting && this.coarse.children.length > 0;
+    this.content.visible = !coarse;
+    this.coarse.visible = coarse;
+    this.stats.coarse = coarse;
+    for (const group of [this.content, this.coarse, this.overlay]) {
       for (const child of group.children) {
         const material = (child as THREE.Mesh).material;
         if (material instanceof THREE.LineDashedMaterial) material.scale = 1 / perPixel;

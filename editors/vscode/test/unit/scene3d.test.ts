@@ -4,7 +4,7 @@ import { packMoves } from '../../src/core/packed';
 import { parsePreview } from '../../src/core/preview';
 import { fitView, KIND_ARC, KIND_ARC_IMPOSSIBLE, KIND_HOLE, KIND_RAPID, project } from '../../src/webview/geometry';
 import { render, STYLES, type CanvasLike, type PathLike } from '../../src/webview/render';
-import { buildPaths, groupOf, thin, type Paths3d } from '../../src/webview/scene3d';
+import { buildPaths, coarsen, groupOf, thin, type Paths3d } from '../../src/webview/scene3d';
 import { move, readFixture } from './fixtures';
 
 const packedOf = (name: string) => packMoves(parsePreview(readFixture(name)).moves);
@@ -127,4 +127,13 @@ test('a circle that cannot exist is dashed in the error colour with a cross, and
   const paths = buildPaths(packed);
   assert.equal(paths.impossible, 1);
   assert.ok(paths.kind[paths.firstSegment[[...packed.line].indexOf(8)]] & KIND_ARC_IMPOSSIBLE);
+});
+
+test('while the user orbits a large drawing, runs of segments become one, from the first start to the last end', () => {
+  const points = new Float32Array(10 * 6);
+  for (let i = 0; i < 10; i++) points.set([i, 0, 0, i + 1, 0, 0], i * 6);
+  const groups = new Map([[0, points]]);
+  assert.equal(coarsen(groups, 100), groups, 'within the budget: unchanged');
+  const coarse = coarsen(groups, 3).get(0)!;
+  assert.deepEqual([...coarse], [0, 0, 0, 4, 0, 0, 4, 0, 0, 8, 0, 0, 8, 0, 0, 10, 0, 0]);
 });
