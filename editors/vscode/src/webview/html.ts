@@ -57,8 +57,9 @@ export function toolpathHtml(options: PageOptions): string {
   #canvas-box { position: relative; flex: 1; min-height: 0; }
   canvas { position: absolute; inset: 0; width: 100%; height: 100%; cursor: crosshair; }
   #status { flex: none; padding: 2px 8px; border-top: 1px solid var(--vscode-panel-border, #444); line-height: 1.4em;
-    height: 2.8em; overflow: hidden; }
+    height: 4.2em; overflow: hidden; }
   #status .part { display: inline-block; max-width: 100%; white-space: nowrap; overflow: hidden; text-overflow: ellipsis; vertical-align: bottom; }
+  #status .part.long { display: inline; white-space: normal; }
   #tip { position: absolute; pointer-events: none; display: none; padding: 2px 6px; white-space: pre;
     background: var(--vscode-editorHoverWidget-background, #252526); border: 1px solid var(--vscode-editorHoverWidget-border, #454545); }
 </style>

@@ -228,22 +228,6 @@ export function render(
     ctx.stroke(pen.path);
   });
   stats.holes = drawHoles(ctx, newPath, p, view, width, height, palette);
-  stats.impossible = impossible.length;
-  if (impossible.length) {
-    const marks = newPath();
-    for (const s of impossible) {
-      const [mx, my] = toScreen(view, (p.x0[s] + p.x1[s]) / 2, (p.y0[s] + p.y1[s]) / 2);
-      const r = IMPOSSIBLE_MARK_PX;
-      marks.moveTo(mx - r, my - r);
-      marks.lineTo(mx + r, my + r);
-      marks.moveTo(mx - r, my + r);
-      marks.lineTo(mx + r, my - r);
-    }
-    ctx.strokeStyle = palette.impossible.colour;
-    ctx.lineWidth = 2;
-    ctx.setLineDash([]);
-    ctx.stroke(marks);
-  }
   if (highlight.length > 0) {
     const pen = new Pen(newPath());
     for (let i = 0; i < highlight.length; i++) {
@@ -268,6 +252,23 @@ export function render(
       const [ex, ey] = toScreen(view, p.x1[highlight[i]], p.y1[highlight[i]]);
       ctx.fillRect(ex - 3, ey - 3, 6, 6);
     }
+  }
+  // The crosses last, so that a highlighted circle that cannot exist keeps its mark.
+  stats.impossible = impossible.length;
+  if (impossible.length) {
+    const marks = newPath();
+    for (const s of impossible) {
+      const [mx, my] = toScreen(view, (p.x0[s] + p.x1[s]) / 2, (p.y0[s] + p.y1[s]) / 2);
+      const r = IMPOSSIBLE_MARK_PX;
+      marks.moveTo(mx - r, my - r);
+      marks.lineTo(mx + r, my + r);
+      marks.moveTo(mx - r, my + r);
+      marks.lineTo(mx + r, my - r);
+    }
+    ctx.strokeStyle = palette.impossible.colour;
+    ctx.lineWidth = 2;
+    ctx.setLineDash([]);
+    ctx.stroke(marks);
   }
   return stats;
 }

@@ -42,8 +42,8 @@ async function colours(x, y, radius = 2) {
   return canvasColours(page, 'canvas', x, y, radius);
 }
 
-async function hasColour(x, y, colour, radius = 2) {
-  return (await colours(x, y, radius)).some((c) => covers(c, colour));
+async function hasColour(x, y, colour, radius = 2, under = BACKGROUND) {
+  return (await colours(x, y, radius)).some((c) => covers(c, colour, under));
 }
 
 before(async () => {
@@ -187,7 +187,7 @@ test('the drawing matches the committed screenshot outline', async () => {
 test('in a light theme the page draws with the light palette', async () => {
   await page.evaluate('document.body.classList.add("vscode-light"); document.body.style.background = "#ffffff"; toolpathDebug.redrawNow()');
   const [sx, sy] = await screen(30, 0);
-  assert.ok(await hasColour(sx, sy, hex('#0b5cad')), 'dark blue feed on white');
+  assert.ok(await hasColour(sx, sy, hex('#0b5cad'), 2, [255, 255, 255]), 'dark blue feed on white');
   const [bx, by] = await screen(22, 42);
   assert.ok((await colours(bx, by, 2)).every((c) => near(c, [255, 255, 255], 10)), 'the theme background');
   await page.evaluate('document.body.classList.remove("vscode-light"); document.body.style.background = ""; toolpathDebug.redrawNow()');
