@@ -135,7 +135,12 @@ const mode3d = new Mode3d(document.getElementById('canvas3d') as HTMLCanvasEleme
 });
 
 function setMode(mode: '2d' | '3d'): void {
-  if (!mode3d.setActive(mode === '3d')) mode = '2d';
+  if (!mode3d.setActive(mode === '3d')) {
+    // No WebGL here: the 3D switch says why and the plane view stays.
+    mode = '2d';
+    modeButtons['3d'].disabled = true;
+    modeButtons['3d'].title = mode3d.failure;
+  }
   canvas.style.display = mode === '3d' ? 'none' : 'block';
   planeSelect.disabled = mode === '3d';
   for (const [name, button] of Object.entries(modeButtons)) button.setAttribute('aria-pressed', String(name === mode));

@@ -6,13 +6,14 @@ export function findChromium() {
   return process.env.CHROMIUM_BIN || 'chromium';
 }
 
-export async function launch({ width = 900, height = 640 } = {}) {
+/** `args`: more Chromium switches (e.g. `--disable-webgl`). */
+export async function launch({ width = 900, height = 640, args = [] } = {}) {
   const browser = spawn(
     findChromium(),
     [
       '--headless=new', '--remote-debugging-pipe', '--no-sandbox', '--disable-gpu', '--no-first-run',
       '--disable-extensions', '--hide-scrollbars', '--mute-audio', '--allow-file-access-from-files',
-      `--window-size=${width},${height}`, 'about:blank',
+      `--window-size=${width},${height}`, ...args, 'about:blank',
     ],
     { stdio: ['ignore', 'ignore', 'pipe', 'pipe', 'pipe'] },
   );

@@ -2,7 +2,8 @@
 // the plane view's colours with arcs as arcs, highlights the cursor's block (the pixels of the
 // highlighted segment have the highlight colour), a click on a segment posts the message that selects
 // its line, it orbits, pans, zooms and fits, a hole and a circle that cannot exist are drawn as in
-// the plane view, and it prints its load and frame times for a million moves. The picture is written
+// the plane view, it prints its load and frame times for a million moves, and without WebGL the 3D
+// switch is disabled and says why. The picture is written
 // to out/page/toolpath3d.png (and docs/toolpath-3d.png with UPDATE_SCREENSHOT=1).
 import assert from 'node:assert/strict';
 import * as fs from 'node:fs';
@@ -245,4 +246,20 @@ test('a million moves load and draw in 3D within a usable time (figures printed)
   assert.ok(figures.stats.thinned > 0 && figures.stats.drawn > 1000, 'thinned like the plane view');
   assert.ok(figures.picked >= 0, 'a click finds a move');
   assert.match(figures.status, /1,000,000 moves · 3D · mm · [\d,]+ thinned at this zoom/);
+});
+
+test('without WebGL the 3D switch is disabled, says why, and the plane view stays', async () => {
+  const plain = await launch({ width: 600, height: 400, args: ['--disable-webgl', '--disable-3d-apis'] });
+  try {
+    await plain.goto(writePage('index3d-nowebgl.html'));
+    await untilIn(plain, 'harness.sent.some((m) => m.type === "ready")', 'the page to say it is ready');
+    await plain.evaluate('document.getElementById("mode-3d").click()');
+    const state = await plain.evaluate(`({ disabled: document.getElementById("mode-3d").disabled, title: document.getElementById("mode-3d").title,
+      plane: document.getElementById("canvas").style.display, pressed: document.getElementById("mode-2d").getAttribute("aria-pressed") })`);
+    assert.equal(state.disabled, true);
+    assert.match(state.title, /^3D view unavailable: /);
+    assert.deepEqual([state.plane, state.pressed], ['block', 'true']);
+  } finally {
+    await plain.close();
+  }
 });
