@@ -168,16 +168,33 @@ test('a drag orbits, a shift-drag pans, the wheel zooms, and Fit or F brings the
   const refitted = await camera();
   assert.ok(!refitted.moved && refitted.zoom === 1);
   assert.ok(Math.hypot(...refitted.position.map((v, k) => v - fitted.position[k])) < 1e-6, 'Fit looks from where it first did');
-  // With a fitted view a resize fits again: the toolpath's box stays on the canvas.
+  // With a fitted view a resize (the panel below opening) fits again: every corner of the
+  // toolpath's box stays on the smaller canvas.
+  const corners = async () => {
+    const { bounds, origin } = await page.evaluate('({ bounds: toolpathDebug.mode3d.paths.bounds, origin: toolpathDebug.mode3d.paths.origin })');
+    const out = [];
+    for (let corner = 0; corner < 8; corner++) {
+      const p = [0, 1, 2].map((k) => (corner & (1 << k) ? bounds.max[k] : bounds.min[k]) + origin[k]);
+      out.push(await screen(...p));
+    }
+    return out;
+  };
+  await page.evaluate('document.body.style.height = ""');
+  await until(`toolpathDebug.state.height > 500`, 'the canvas at its full size');
+  const tall = await page.evaluate('toolpathDebug.mode3d.view.camera.top');
+  await page.evaluate('document.body.style.height = "360px"');
+  await until(`toolpathDebug.state.height < 300`, 'the lower canvas');
+  const height = await page.evaluate('toolpathDebug.state.height');
+  assert.ok((await page.evaluate('toolpathDebug.mode3d.view.camera.top')) !== tall, 'the camera fitted the new size');
+  for (const [x, y] of await corners()) assert.ok(x >= 0 && x <= 900 && y >= 0 && y <= height, `corner at ${x}, ${y} on the ${height}-pixel canvas`);
+  assert.ok(!(await camera()).moved);
   await page.evaluate('document.body.style.height = ""');
   await until(`toolpathDebug.state.height > 500`, 'the canvas at its size again');
-  await page.evaluate('toolpathDebug.redrawNow()');
-  const box = await page.evaluate(`(() => { const v = toolpathDebug.mode3d.view, s = toolpathDebug.state; return [v.camera.top, s.width, s.height]; })()`);
+  assert.equal(await page.evaluate('toolpathDebug.mode3d.view.camera.top'), tall, 'and fitted again when it grew');
   await drag([450, 300], [500, 300]);
   await page.key('f');
   const again = await camera();
   assert.ok(!again.moved && Math.hypot(...again.position.map((v, k) => v - fitted.position[k])) < 1e-6, 'F fits');
-  assert.equal(await page.evaluate('toolpathDebug.mode3d.view.camera.top'), box[0]);
 });
 
 test('holes are rings that select their line, and a circle that cannot exist is dashed and marked', async () => {
