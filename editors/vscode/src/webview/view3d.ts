@@ -161,17 +161,41 @@ export class View3d {
     this.camera.zoom = 1;
     this.controls.target.copy(centre);
     this.camera.lookAt(centre);
-    // The box's corners seen from the camera decide the size, with a margin of 20 pixels as in the plane view.
+    // The segments' end points seen from the camera decide the size (at most about 200,000 of them
+    // looked at; without segments the box's corners), with a margin of 20 pixels as in the plane view.
     this.camera.updateMatrixWorld();
     const view = this.camera.matrixWorldInverse;
-    let halfW = 1e-6;
-    let halfH = 1e-6;
-    const local = centre.clone().applyMatrix4(view);
-    for (let corner = 0; corner < 8; corner++) {
-      const p = new THREE.Vector3(corner & 1 ? max.x : min.x, corner & 2 ? max.y : min.y, corner & 4 ? max.z : min.z).applyMatrix4(view);
-      halfW = Math.max(halfW, Math.abs(p.x - local.x));
-      halfH = Math.max(halfH, Math.abs(p.y - local.y));
+    const extent = [Infinity, Infinity, -Infinity, -Infinity];
+    const p = new THREE.Vector3();
+    const reach = () => {
+      p.applyMatrix4(view);
+      extent[0] = Math.min(extent[0], p.x);
+      extent[1] = Math.min(extent[1], p.y);
+      extent[2] = Math.max(extent[2], p.x);
+      extent[3] = Math.max(extent[3], p.y);
+    };
+    const points = this.paths?.points;
+    if (points && points.length) {
+      const stride = Math.max(1, Math.ceil(points.length / 3 / 200_000));
+      for (let i = 0; i < points.length / 3; i += stride) {
+        p.set(points[i * 3], points[i * 3 + 1], points[i * 3 + 2]);
+        reach();
+      }
+    } else {
+      for (let corner = 0; corner < 8; corner++) {
+        p.set(corner & 1 ? max.x : min.x, corner & 2 ? max.y : min.y, corner & 4 ? max.z : min.z);
+        reach();
+      }
     }
+    // Centre what is seen: move the camera and its target across the line of sight.
+    const local = centre.clone().applyMatrix4(view);
+    const shift = new THREE.Vector3((extent[0] + extent[2]) / 2 - local.x, (extent[1] + extent[3]) / 2 - local.y, 0)
+      .transformDirection(this.camera.matrixWorld)
+      .multiplyScalar(Math.hypot((extent[0] + extent[2]) / 2 - local.x, (extent[1] + extent[3]) / 2 - local.y));
+    this.camera.position.add(shift);
+    this.controls.target.add(shift);
+    const halfW = Math.max((extent[2] - extent[0]) / 2, 1e-6);
+    const halfH = Math.max((extent[3] - extent[1]) / 2, 1e-6);
     const usableW = Math.max(this.width - 40, 1);
     const usableH = Math.max(this.height - 40, 1);
     // World units per pixel that fit both directions; the frustum's half height follows from it.
