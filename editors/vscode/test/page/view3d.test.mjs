@@ -136,6 +136,27 @@ test('a click on a segment posts the message that selects its line, and the tool
   assert.match(await status(), / · N80, line 9$/);
 });
 
+test('in 3D too, the cursor in a called program highlights its moves, and a click on one selects its file\'s line', async () => {
+  const slot = 'file:///work/SLOT.SPF';
+  await load('calls_mill.preview.json', 'calls_mill.mpf', 19);
+  await page.evaluate(`harness.setCursor(4, '${slot}')`);
+  await until('toolpathDebug.state.cursorFile !== undefined', 'the cursor in SLOT.SPF');
+  await page.evaluate('toolpathDebug.redrawNow()');
+  assert.match(await status(), / · SLOT\.SPF line 4: 3 moves$/);
+  // The cut of SLOT.SPF line 4 in its third run: X30 to X50 at Y30 (Z-2).
+  const [sx, sy] = await screen(42, 30, -2);
+  assert.ok(await hasColour(sx, sy, HIGHLIGHT, 1), 'the third run is highlighted');
+  await page.evaluate('harness.setCursor(1)');
+  await until('toolpathDebug.state.cursorLine === 1', 'the cursor message');
+  const before = (await reveals()).length;
+  await click(sx, sy);
+  await until(`harness.sent.filter((m) => m.type === "reveal").length > ${before}`, 'a reveal message');
+  assert.deepEqual((await reveals()).at(-1), { type: 'reveal', line: 4, file: slot });
+  await page.evaluate('toolpathDebug.redrawNow()');
+  assert.match(await status(), / · N20, pass 3 of 3, SLOT\.SPF line 4$/);
+  await load('demo_mill.preview.json', 'demo_mill.mpf', 28);
+});
+
 test('a drag orbits, a shift-drag pans, the wheel zooms, and Fit or F brings the whole toolpath back', async () => {
   const camera = () => page.evaluate(`(() => { const v = toolpathDebug.mode3d.view; return { position: v.camera.position.toArray(),
     target: v.controls.target.toArray(), zoom: v.camera.zoom, moved: v.userMoved }; })()`);
