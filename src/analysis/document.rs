@@ -14,13 +14,15 @@
 //! the new edit's lines. The first analysis of a large document reads its two halves on two threads
 //! (see [`DocumentAnalysis::new_in_parallel`]).
 
-use crate::analysis::engine::{Engine, EngineSnapshot};
+use crate::analysis::engine::engine_state::Engine;
+use crate::analysis::engine::moves::Move;
+use crate::analysis::engine::snapshot::EngineSnapshot;
 use crate::analysis::position_reads::{
     position_reads as position_reads_of, shifted_axes, READS_ALL,
 };
+use crate::analysis::program_kind::{is_proc_header, ProgramKind};
 pub use crate::analysis::resolution::{ResolutionMode, WordResolution};
 use crate::analysis::state::{ModalState, Pole};
-use crate::analysis::{is_proc_header, Move, ProgramKind};
 use crate::config::MachineConfig;
 use crate::diagnostics::{Diagnostic, LineDiagnostic};
 use crate::syntax::structure::StructureChecker;

@@ -13,6 +13,7 @@ mod array;
 mod evaluator;
 mod functions;
 mod value;
+mod var_type;
 mod variables;
 
 #[cfg(test)]
@@ -21,7 +22,8 @@ mod tests;
 pub use array::{element_indexes, IndexError, MAX_DIMENSIONS, MAX_FOLLOWED_ELEMENTS};
 pub use functions::{function_arguments, is_evaluated_function};
 pub use value::{real_equal, real_less, real_less_equal, Value, INT_RANGE};
-pub use variables::{AssignError, DefineError, Locals, VarType, Variables};
+pub use var_type::VarType;
+pub use variables::{AssignError, DefineError, Locals, Variables};
 
 use crate::diagnostics::Span;
 use crate::syntax::ast::{Block, ExprId};

@@ -7,8 +7,8 @@
 mod cutting_speed;
 mod trapezoid;
 
-use crate::analysis::engine::spindle::FeedType;
-use crate::analysis::Move;
+use crate::analysis::engine::moves::Move;
+use crate::analysis::engine::timing::FeedType;
 use crate::config::timing::TimeModelKind;
 use crate::config::{AxisKind, MachineConfig};
 
