@@ -54,6 +54,7 @@ pub fn has_proc_header(text: &str) -> bool {
 }
 
 /// Whether a line starts with `PROC`, the header of a subprogram.
+#[inline]
 pub fn is_proc_header(line: &str) -> bool {
     line.trim_start()
         .get(..4)

@@ -136,6 +136,7 @@ impl<'a> Engine<'a> {
 
     /// Per configured axis, how the block last applied wrote it: 0 not, 1 in workpiece coordinates,
     /// 2 as a machine position.
+    #[inline]
     pub fn written_axes(&self) -> &[u8] {
         &self.written
     }
@@ -198,12 +199,14 @@ impl<'a> Engine<'a> {
     }
 
     /// How this engine finds the configured axis of an axis word.
+    #[inline]
     pub fn axis_lookup(&self) -> &AxisLookup {
         &self.axes
     }
 
     /// Whether a label, jump or control structure has been passed, so that values may not follow the
     /// control's path through the program.
+    #[inline]
     pub fn flow_uncertain(&self) -> bool {
         self.flow_uncertain
     }

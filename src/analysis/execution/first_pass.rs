@@ -4,7 +4,7 @@
 //! caller asks for it ([`RunSetup::record_first_passes`](crate::analysis::execution::entry::RunSetup)): a preview of a large
 //! program does not pay for a state per line.
 
-use crate::analysis::document::StateSummary;
+use crate::analysis::document::report::StateSummary;
 use crate::syntax::gcodes::GCode;
 use std::sync::Arc;
 

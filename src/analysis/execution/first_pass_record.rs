@@ -1,7 +1,7 @@
 //! How a run records the first passes of the analysed program's lines (`first_pass.rs`): the state
 //! after a block's first execution, and the program a first call runs with its state on return.
 
-use crate::analysis::document::summarize;
+use crate::analysis::document::report::summarize;
 use crate::analysis::engine::engine_state::Engine;
 use crate::analysis::execution::first_pass::{PassState, GROUPS};
 use crate::analysis::execution::interpreter::Interpreter;

@@ -16,15 +16,14 @@ use crate::analysis::execution::program::ProgramUnit;
 use crate::analysis::execution::resume::{
     unit_paths, Checkpoint, PassDelta, Recorder, Rejoin, NEVER,
 };
+use crate::analysis::execution::run_program::add_stage_findings;
 use crate::analysis::execution::ways::RunEnd;
 use crate::analysis::library::{LibraryProgram, ProgramLibrary};
 use crate::analysis::program_kind::ProgramKind;
-use crate::config::execution::ExecutionOptions;
-use crate::config::MachineConfig;
+use crate::config::{execution::ExecutionOptions, MachineConfig};
 use crate::diagnostics::LineDiagnostic;
 use crate::syntax::LineParser;
-use std::collections::HashMap;
-use std::sync::Arc;
+use std::{collections::HashMap, sync::Arc};
 
 /// How a recorded run was made, for tests and figures.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -87,10 +86,7 @@ impl RecordedRun {
             return self;
         };
         if let Some((path, findings)) = path_of(&self.moves, config, main.text()) {
-            crate::analysis::execution::run_program::add_stage_findings(
-                &mut self.execution.findings,
-                findings,
-            );
+            add_stage_findings(&mut self.execution.findings, findings);
             self.path_moves = Arc::new(path);
         }
         self
