@@ -9,7 +9,7 @@
 //! as reading every axis absolutely.
 
 use crate::analysis::axis_lookup::AxisLookup;
-use crate::analysis::engine::PositionShift;
+use crate::analysis::engine::snapshot::PositionShift;
 use crate::analysis::state::ModalState;
 use crate::config::{AxisKind, MachineConfig};
 use crate::syntax::ast::{AddressKind, Block, Modifier, NamedAddress, Statement};

@@ -6,7 +6,7 @@
 //! another number than the engine's. Where they would disagree, `explained` is false and only the
 //! engine's value is to be shown.
 
-use crate::analysis::engine::axis_name;
+use crate::analysis::engine::evaluation::axis_name;
 use crate::analysis::eval::evaluate;
 use crate::analysis::state::ModalState;
 use crate::config::{AxisKind, MachineConfig};

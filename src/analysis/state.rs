@@ -56,9 +56,9 @@ pub struct ModalState {
     /// The modal feed of chamfers and roundings `FRCM` in the basic unit system (0 = off).
     pub chamfer_feed_modal: Option<f64>,
     /// The first line of a two-block contour definition by angles, waiting for its second line.
-    pub open_angle: Option<crate::analysis::engine::OpenAngle>,
+    pub open_angle: Option<crate::analysis::engine::corner_requests::OpenAngle>,
     /// The master spindle and the feed type's state for the machining time.
-    pub spindle: crate::analysis::engine::spindle::SpindleState,
+    pub spindle: crate::analysis::engine::timing::SpindleState,
 }
 
 /// The pole of a plane.

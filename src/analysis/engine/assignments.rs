@@ -1,72 +1,11 @@
 //! Assignments to R parameters by computed number (`R[i]=`, `$R[i]=`) and to user variables and their
-//! array elements, through the typed store of `eval::Variables`; and the findings of evaluation errors.
+//! array elements, through the typed store of `eval::Variables`.
 
-use super::Engine;
-use crate::analysis::eval::{
-    function_arguments, AssignError, EvalError, IndexError, Value, VarType,
-};
+use crate::analysis::engine::engine_state::Engine;
+use crate::analysis::engine::evaluation::{evaluate_or_report, quoted, whole_number};
+use crate::analysis::eval::{AssignError, IndexError, Value, VarType};
 use crate::diagnostics::{Code, Diagnostic, Span};
 use crate::syntax::ast::{Block, ExprId, ExprKind};
-
-/// Longest quotation of program text in a message, in characters.
-const MAX_QUOTE_CHARACTERS: usize = 60;
-
-/// `text` for a message, shortened when long: a finding about a megabyte-long name helps nobody.
-fn quoted(text: &str) -> String {
-    // Looks at most one character past the limit, however long the text.
-    if text.chars().nth(MAX_QUOTE_CHARACTERS).is_none() {
-        return text.to_string();
-    }
-    let mut short: String = text.chars().take(MAX_QUOTE_CHARACTERS - 1).collect();
-    short.push('…');
-    short
-}
-
-/// A whole number for a message, short whatever its size.
-fn whole_number(number: f64) -> String {
-    if number.abs() < 1e15 {
-        format!("{}", number as i64)
-    } else {
-        format!("{number:e}")
-    }
-}
-
-/// The finding for an error of the program found while evaluating an expression of `line`.
-pub(super) fn eval_error_diagnostic(line: &str, error: EvalError) -> Diagnostic {
-    match error {
-        EvalError::DivisionByZero(span) => {
-            Diagnostic::new(Code::DivisionByZero, span, "division by zero (alarm 14051)")
-        }
-        EvalError::Overflow(span) => Diagnostic::new(
-            Code::ArithmeticError,
-            span,
-            "arithmetic overflow: the result is beyond the range of a double (alarm 14051)",
-        ),
-        EvalError::Domain(span, what) => {
-            Diagnostic::new(Code::ArithmeticError, span, format!("{what} (alarm 14051)"))
-        }
-        EvalError::ArgumentCount(span, expected) => {
-            let text = &line[span.start()..span.end()];
-            let name = text.split('(').next().unwrap_or_default().trim();
-            let name = name.to_ascii_uppercase();
-            let takes = match function_arguments(&name) {
-                Some((least, most)) if least != most => format!("{least} or {most} arguments"),
-                _ if expected == 1 => "1 argument".to_string(),
-                _ => format!("{expected} arguments"),
-            };
-            let message = format!("{} takes {takes} (alarm 14020)", quoted(&name));
-            Diagnostic::new(Code::FunctionArgumentCount, span, message)
-        }
-        EvalError::IndexOutOfRange(span) => Diagnostic::new(
-            Code::IndexOutOfRange,
-            span,
-            format!(
-                "`{}`: the index is out of range (alarm 17020)",
-                quoted(&line[span.start()..span.end()])
-            ),
-        ),
-    }
-}
 
 /// An evaluated index: a whole number from 0, a whole negative number, or anything else (unknown).
 enum Index {
@@ -96,8 +35,7 @@ impl Engine<'_> {
         value: Option<f64>,
         diagnostics: &mut Vec<Diagnostic>,
     ) {
-        let index =
-            super::evaluate_or_report(block, line, index, &self.state.variables, diagnostics);
+        let index = evaluate_or_report(block, line, index, &self.state.variables, diagnostics);
         match index_of(index) {
             // An index is at most u32::MAX (see `index_of`).
             Index::At(number) => self.state.variables.set_r_parameter(number as u32, value),
@@ -140,8 +78,7 @@ impl Engine<'_> {
         let mut at = Vec::with_capacity(indexes.len());
         let mut known = true;
         for index in indexes {
-            let index =
-                super::evaluate_or_report(block, line, *index, &self.state.variables, diagnostics);
+            let index = evaluate_or_report(block, line, *index, &self.state.variables, diagnostics);
             match index_of(index) {
                 Index::At(index) => at.push(index),
                 Index::Negative(number) => {

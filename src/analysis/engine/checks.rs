@@ -2,7 +2,8 @@
 //! active), G70/G71 mixed with G700/G710 in a program that programs F, a plain `AP=` under G91, and a
 //! polar move right after a pole or plane change that relies on a stored AP or RP.
 
-use super::{Engine, PolarWords};
+use crate::analysis::engine::block_words::{statements_span, PolarWords};
+use crate::analysis::engine::engine_state::Engine;
 use crate::diagnostics::{Code, Diagnostic};
 use crate::syntax::ast::{AddressKind, Statement};
 use crate::syntax::gcodes::{known, GCode};
@@ -48,7 +49,7 @@ impl Engine<'_> {
             };
             diagnostics.push(Diagnostic::new(
                 Code::AxisLeftOutAfterRotation,
-                super::statements_span(statements).unwrap_or_default(),
+                statements_span(statements).unwrap_or_default(),
                 format!("{} {verb} left out of the first move after a frame change that rotates, scales or mirrors: the last programmed value is not kept, the position in the new coordinates is, so this move may move {pronoun} too; program all geometry axes here", left_out.join(", ")),
             ));
         }
@@ -133,5 +134,29 @@ impl Engine<'_> {
                 format!("after a pole or plane change AP and RP must be written again; {missing} is missing, and what the control takes for it then is not documented, so the end point is unknown"),
             ));
         }
+    }
+
+    /// G1/G2/G3 need a feed (alarm 10860); reported once, at the first feed move without one.
+    pub(super) fn check_feed(
+        &mut self,
+        motion: &str,
+        statements: &[Statement],
+        diagnostics: &mut Vec<Diagnostic>,
+    ) {
+        let needs_feed = matches!(motion, "G1" | "G2" | "G3" | "CIP" | "CT");
+        if !needs_feed || self.state.feed.is_some() || self.missing_feed_reported {
+            return;
+        }
+        let span = statements
+            .iter()
+            .find(|statement| matches!(statement, Statement::Address(word) if word.kind == AddressKind::Axis))
+            .map(Statement::span)
+            .unwrap_or_default();
+        self.missing_feed_reported = true;
+        diagnostics.push(Diagnostic::new(
+            Code::FeedMissing,
+            span,
+            format!("{motion} moves at the programmed feed, but no F has been programmed yet (alarm 10860)"),
+        ));
     }
 }

@@ -3,7 +3,8 @@
 //! at once, a circle of radius zero, CIP without a usable intermediate point, and a pole with one
 //! coordinate. The circle geometry itself is checked in `circles.rs`.
 
-use super::{CircleWords, Engine, PolarWords};
+use crate::analysis::engine::block_words::{statements_span, CircleWords, PolarWords};
+use crate::analysis::engine::engine_state::Engine;
 use crate::diagnostics::{Code, Diagnostic, Span};
 use crate::syntax::ast::{AddressKind, Extension, NamedAddress, Statement};
 use crate::syntax::gcodes::GCode;
@@ -285,7 +286,7 @@ impl Engine<'_> {
         let missing = if given[0] { second } else { first };
         diagnostics.push(Diagnostic::new(
             Code::PoleWithOneCoordinate,
-            super::statements_span(statements).unwrap_or_default(),
+            statements_span(statements).unwrap_or_default(),
             format!(
                 "the pole is given by one coordinate only: {} is taken as 0 from the reference of {}, which is not documented; write both coordinates of the plane",
                 self.config.axes[missing].name,

@@ -3,8 +3,9 @@
 //! start turned about the centre), through an intermediate point (CIP with I1/J1/K1), or tangential to
 //! the previous path element (CT); TURN adds full turns. What the control rejects is reported.
 
-use super::{CircleWords, Engine};
 use crate::analysis::circle::{self, Circle, CircleError};
+use crate::analysis::engine::block_words::CircleWords;
+use crate::analysis::engine::engine_state::Engine;
 use crate::analysis::four_decimals::FourDecimals;
 use crate::config::AxisKind;
 use crate::diagnostics::{Code, Diagnostic, Span};
@@ -354,6 +355,48 @@ impl Engine<'_> {
             circle.sweep += 360.0 * turns;
             circle
         })
+    }
+
+    /// Reads I, J or K: incremental from the circle's start unless `=AC` (reference §3.2), converted by
+    /// G70/G700; on a transverse axis an absolute value under diameter programming is a diameter.
+    pub(super) fn collect_centre_word(
+        &self,
+        line: &str,
+        block: &Block,
+        word: &AddressWord,
+        circle_words: &mut CircleWords,
+        diagnostics: &mut Vec<Diagnostic>,
+    ) {
+        let letter = line.as_bytes()[word.name.start()].to_ascii_uppercase();
+        let slot = match letter {
+            b'I' => 0,
+            b'J' => 1,
+            _ => 2,
+        };
+        let absolute = matches!(word.value.modifier, Some((Modifier::Ac, _)));
+        let value = self.word_value(line, block, word, diagnostics);
+        let (Some(value), Some(factor)) = (value, self.state.length_factor(self.config.metric))
+        else {
+            circle_words.centre_unknown = true;
+            return;
+        };
+        let mut value = value * factor;
+        let axis_name = ["X", "Y", "Z"][slot];
+        let transverse = self
+            .config
+            .axis(axis_name)
+            .is_some_and(|axis| axis.kind == AxisKind::Transverse);
+        if transverse && absolute {
+            match self.state.diameter_mode() {
+                Some((true, _)) => value /= 2.0,
+                Some(_) => {}
+                None => {
+                    circle_words.centre_unknown = true;
+                    return;
+                }
+            }
+        }
+        circle_words.centre[slot] = Some((value, absolute));
     }
 }
 

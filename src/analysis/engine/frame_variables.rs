@@ -4,7 +4,8 @@
 //! unknown); writes to basic and system frames make every settable offset unknown; `G[n]=v` selects a
 //! G function by group and number.
 
-use super::{evaluate_or_report, Engine};
+use crate::analysis::engine::engine_state::Engine;
+use crate::analysis::engine::evaluation::evaluate_or_report;
 use crate::analysis::machine;
 use crate::diagnostics::Span;
 use crate::syntax::ast::{Block, ExprId, ExprKind};

@@ -5,7 +5,8 @@
 //! boundaries), so the word moves that axis. When the name is not known, which axis moves is not
 //! known: every axis becomes unknown, and no axis is shown as moved.
 
-use super::{BlockFunctions, Engine};
+use crate::analysis::engine::block_words::BlockFunctions;
+use crate::analysis::engine::engine_state::Engine;
 use crate::analysis::eval::{evaluate_value, EvalOptions, Value};
 use crate::diagnostics::Diagnostic;
 use crate::syntax::ast::{AddressWord, Block, ExprKind, Extension};

@@ -3,7 +3,8 @@
 //! every way stays known, what differs becomes unknown. Joining only ever forgets, so repeated joins
 //! reach a fixed point.
 
-use crate::analysis::engine::{EngineSnapshot, ProgramMemory};
+use crate::analysis::engine::engine_state::ProgramMemory;
+use crate::analysis::engine::snapshot::EngineSnapshot;
 use crate::analysis::state::{ModalState, Pole};
 
 /// `value` stays only when `other` holds the same.
@@ -92,7 +93,7 @@ impl EngineSnapshot {
 
 #[cfg(test)]
 mod tests {
-    use crate::analysis::Engine;
+    use crate::analysis::engine::engine_state::Engine;
     use crate::config::MachineConfig;
     use crate::syntax::{parse_line, SyntaxContext};
 

@@ -3,7 +3,7 @@
 //! configured count (alarm 17020), modulo rotary axes programmed outside 0..360 (MD30455 bit 0), and
 //! calls of predefined functions the checker does not compute.
 
-use super::Engine;
+use crate::analysis::engine::engine_state::Engine;
 use crate::analysis::eval::is_evaluated_function;
 use crate::config::AxisKind;
 use crate::diagnostics::{Code, Diagnostic, Span};

@@ -3,7 +3,7 @@
 //! `N30 G0 G53 Z0 D0`. The interpreter also gives the engine the macros of the library's definition
 //! files (`execution/library_macros.rs`); macros of files the analysis has not seen stay calls.
 
-use super::Engine;
+use crate::analysis::engine::engine_state::Engine;
 use crate::diagnostics::{Diagnostic, Span};
 use crate::syntax::ast::{AddressKind, Block, CallKind, Statement};
 

@@ -2,7 +2,7 @@
 //! one of them writes.
 
 use super::value::Value;
-use super::variables::VarType;
+use super::var_type::VarType;
 use std::sync::Arc;
 
 /// Arrays have at most three dimensions (reference §8.1; two in older versions).

@@ -3,9 +3,9 @@
 
 use super::array::IndexError;
 use super::functions::{apply, function_arguments, FunctionError};
+use super::options::{EvalError, EvalOptions};
 use super::value::{as_int, real_equal, real_less, real_less_equal, Value};
 use super::variables::Variables;
-use super::{EvalError, EvalOptions};
 use crate::diagnostics::Span;
 use crate::syntax::ast::{BinaryOp, Block, ExprId, ExprKind, UnaryOp};
 use std::borrow::Cow;

@@ -1,7 +1,7 @@
 //! The assumed entry state of a subprogram analysed on its own (docs/execution.md): which G groups
 //! still have their assumed reset value on a way, and which axes' values rest on them.
 
-use crate::analysis::engine::Engine;
+use crate::analysis::engine::engine_state::Engine;
 use crate::analysis::execution::interpreter::Interpreter;
 use crate::analysis::execution::paths::Control;
 use crate::config::MachineConfig;

@@ -2,14 +2,15 @@
 //! bound by position (an omitted one is 0, §17.1), its own level of user variables, `P` repetitions,
 //! `SAVE`, the modal call `MCALL`, the return by `M17`/`RET`/end of file, and the level limit.
 
-use crate::analysis::engine::Engine;
+use crate::analysis::engine::engine_state::Engine;
 use crate::analysis::eval::{element_indexes, evaluate, Value, VarType, Variables};
-use crate::analysis::execution::interpreter::{Interpreter, Next};
+use crate::analysis::execution::block_run::Next;
+use crate::analysis::execution::interpreter::Interpreter;
+use crate::analysis::execution::outcome::{CallSite, ProgramEnd};
 use crate::analysis::execution::paths::{
     Activation, Argument, CallFrame, Control, ModalCall, SavedModal,
 };
 use crate::analysis::execution::program::ProgramUnit;
-use crate::analysis::execution::{CallSite, ProgramEnd};
 use crate::diagnostics::{Code, Span};
 use crate::syntax::ast::{AddressKind, Block, CallKind, ExprId, ExprKind, Statement, ValueExpr};
 use std::sync::Arc;
@@ -143,7 +144,9 @@ impl<'a, 's> Interpreter<'a, 's> {
                 span: Span::default(),
             }),
             // A standard drilling cycle without a program of its own runs as its built-in model.
-            None if super::cycles::is_drilling(&modal.name) && !engine.is_macro(&modal.name) => {
+            None if super::cycles::cycle_state::is_drilling(&modal.name)
+                && !engine.is_macro(&modal.name) =>
+            {
                 self.run_modal_cycle(control, engine, pc, &line, block, &modal);
                 None
             }

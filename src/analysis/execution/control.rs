@@ -2,13 +2,15 @@
 //! jumps with and without conditions, and the program ends. A condition whose value is known takes
 //! the way the control takes; an unknown one lets both ways run (see `Interpreter::fork`).
 
-use crate::analysis::engine::Engine;
+use crate::analysis::engine::engine_state::Engine;
 use crate::analysis::eval::{evaluate, real_equal, real_less_equal, Variables};
-use crate::analysis::execution::interpreter::{mark_unknown_loop, Interpreter, Next};
+use crate::analysis::execution::block_run::Next;
+use crate::analysis::execution::interpreter::Interpreter;
 use crate::analysis::execution::jump_targets::JumpOutcome;
+use crate::analysis::execution::outcome::{ends_program, ProgramEnd};
 use crate::analysis::execution::paths::{Control, LoopFrame};
 use crate::analysis::execution::program::{Partner, ProgramUnit};
-use crate::analysis::execution::{ends_program, ProgramEnd};
+use crate::analysis::execution::ways::mark_unknown_loop;
 use crate::diagnostics::{Code, Span};
 use crate::syntax::ast::{AssignTarget, Block, ExprId, Statement, StructureKeyword};
 

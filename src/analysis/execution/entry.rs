@@ -4,10 +4,6 @@
 //! (docs/execution.md). The states at the call sites are found by the caller of the analysis (the
 //! server reads them from the calling programs); this module only decides and applies.
 
-use crate::analysis::engine::Engine;
-use crate::analysis::execution::assumptions::ASSUMED_GROUPS;
-use crate::analysis::execution::interpreter::Interpreter;
-use crate::analysis::execution::paths::Control;
 use crate::syntax::gcodes::GCode;
 use std::sync::Arc;
 
@@ -100,27 +96,6 @@ pub struct RunSetup {
     pub entry: Option<Arc<CallerEntry>>,
     /// Keep the state of each line's first pass (`first_pass.rs`).
     pub record_first_passes: bool,
-}
-
-impl<'a, 's> Interpreter<'a, 's> {
-    /// Starts a subprogram from the call sites' state: their G functions replace the assumed reset
-    /// ones, and a group they do not agree on is unknown (the control has one of their values).
-    pub(super) fn enter_from_callers(&mut self, control: &mut Control, engine: &mut Engine<'a>) {
-        let Some(entry) = self.setup.entry.clone() else {
-            return;
-        };
-        self.assumed.clear();
-        self.assumed.push(("source", entry.describe()));
-        control.assumed_groups = 0;
-        for &(group, name) in ASSUMED_GROUPS.iter() {
-            let code = entry.groups.iter().find(|code| code.group() == group);
-            engine.state.groups[group as usize] = code.copied();
-            if let Some(code) = code {
-                self.assumed.push((name, code.name().to_string()));
-                control.assumed_groups |= 1 << group;
-            }
-        }
-    }
 }
 
 #[cfg(test)]

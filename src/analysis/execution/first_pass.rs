@@ -1,23 +1,20 @@
 //! What the first execution of each line of the analysed program had: the modal state after the
 //! block (for a status bar that shows one state of a block that runs many times), and for a call the
 //! program it ran and the state when it returned (for the hover of the call). Recorded only when a
-//! caller asks for it ([`RunSetup::record_first_passes`](super::RunSetup)): a preview of a large
+//! caller asks for it ([`RunSetup::record_first_passes`](crate::analysis::execution::entry::RunSetup)): a preview of a large
 //! program does not pay for a state per line.
 
-use crate::analysis::document::{summarize, StateSummary};
-use crate::analysis::engine::Engine;
-use crate::analysis::execution::interpreter::Interpreter;
-use crate::analysis::execution::paths::Control;
+use crate::analysis::document::report::StateSummary;
 use crate::syntax::gcodes::GCode;
 use std::sync::Arc;
 
 /// The G groups a first pass keeps: motion, plane, units, distance, diameter, settable offset.
-const GROUPS: [usize; 6] = [1, 6, 13, 14, 29, 8];
+pub(super) const GROUPS: [usize; 6] = [1, 6, 13, 14, 29, 8];
 
 /// The modal state after the first execution of a block.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct PassState {
-    groups: [Option<GCode>; 6],
+    pub(super) groups: [Option<GCode>; 6],
     /// The modal feed in the basic unit system.
     pub feed: Option<f64>,
 }
@@ -50,11 +47,11 @@ impl PassState {
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct FirstPasses {
     /// Per line, once it ran: the state after its block (before a call on it runs).
-    states: Vec<Option<PassState>>,
+    pub(super) states: Vec<Option<PassState>>,
     /// Per call line: the called program's path and, once the first call returned, the state then.
-    calls: Vec<(usize, Option<Arc<str>>, Option<StateSummary>)>,
+    pub(super) calls: Vec<(usize, Option<Arc<str>>, Option<StateSummary>)>,
     /// The call line whose first call has not returned yet.
-    awaiting: Option<usize>,
+    pub(super) awaiting: Option<usize>,
 }
 
 impl FirstPasses {
@@ -154,62 +151,5 @@ impl FirstPasses {
 fn trim(states: &mut Vec<Option<PassState>>) {
     while states.last().is_some_and(Option::is_none) {
         states.pop();
-    }
-}
-
-impl<'a, 's> Interpreter<'a, 's> {
-    /// Before a block of the analysed program's own level: a call awaiting its return has returned.
-    pub(super) fn first_pass_before(
-        &mut self,
-        control: &Control,
-        engine: &Engine<'a>,
-        unit: usize,
-    ) {
-        let Some(passes) = self.first_passes.as_mut() else {
-            return;
-        };
-        if unit != 0 || control.levels.len() != 1 {
-            return;
-        }
-        if let Some(line) = passes.awaiting.take() {
-            let after = summarize(self.config, &engine.state, engine.flow_uncertain());
-            if let Some(call) = passes.calls.iter_mut().find(|call| call.0 == line) {
-                call.2 = Some(after);
-            }
-        }
-    }
-
-    /// After the block on `pc` of the analysed program: its state when this is its first pass, and
-    /// the program a first call on it runs (`callee`).
-    pub(super) fn first_pass_after(
-        &mut self,
-        control: &Control,
-        engine: &Engine<'a>,
-        unit: usize,
-        pc: usize,
-        callee: Option<usize>,
-    ) {
-        if self.first_passes.is_none() || unit != 0 || control.levels.len() != 1 {
-            return;
-        }
-        if self.passes_so_far(pc) != 1 {
-            return;
-        }
-        let callee_path = callee.map(|index| self.units[index].path.clone());
-        let Some(passes) = self.first_passes.as_mut() else {
-            return;
-        };
-        if passes.states.len() <= pc {
-            passes.states.resize(pc + 1, None);
-        }
-        let state = &engine.state;
-        passes.states[pc] = Some(PassState {
-            groups: GROUPS.map(|group| state.groups[group]),
-            feed: state.feed,
-        });
-        if let Some(path) = callee_path {
-            passes.calls.push((pc, path, None));
-            passes.awaiting = Some(pc);
-        }
     }
 }

@@ -2,7 +2,7 @@
 //! expression holds when the program determines it (reference §8.4: the control evaluates the target
 //! as a string).
 
-use crate::analysis::engine::Engine;
+use crate::analysis::engine::engine_state::Engine;
 use crate::analysis::eval::{evaluate_value, EvalOptions, Value};
 use crate::analysis::execution::interpreter::Interpreter;
 use crate::analysis::execution::program::ProgramUnit;

@@ -5,13 +5,11 @@
 //! program's own `DEFINE` of the same name replaces a file's definition from the block that defines
 //! it on, as the engine records every definition it passes.
 
-use crate::analysis::engine::macro_definition;
-use crate::analysis::execution::interpreter::Interpreter;
+use crate::analysis::engine::macros::macro_definition;
 use crate::analysis::library::ProgramLibrary;
 use crate::config::MachineConfig;
 use crate::syntax::ast::Block;
 use crate::syntax::{lines, macro_names, LineParser, SyntaxContext};
-use std::sync::Arc;
 
 /// The macros of the library's definition files, in reading order: upper-case name and body text.
 #[derive(Debug, Clone, Default, PartialEq)]
@@ -56,23 +54,6 @@ impl LibraryMacros {
 
     pub fn is_empty(&self) -> bool {
         self.definitions.is_empty()
-    }
-}
-
-impl<'a, 's> Interpreter<'a, 's> {
-    /// Runs with macros already read (one execution reads them once for all its runs).
-    pub fn with_library_macros(mut self, macros: Arc<LibraryMacros>) -> Self {
-        self.library_macros = Some(macros);
-        self
-    }
-
-    /// The macros of the library's definition files, read on first use.
-    pub(super) fn library_macros(&mut self) -> Arc<LibraryMacros> {
-        let (library, config) = (self.library, self.config);
-        Arc::clone(
-            self.library_macros
-                .get_or_insert_with(|| Arc::new(LibraryMacros::read(library, config))),
-        )
     }
 }
 

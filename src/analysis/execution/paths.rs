@@ -2,9 +2,9 @@
 //! program level), the loops it is in, and the decisions it depends on. Ways wait in program order
 //! and are joined when they reach the same place.
 
-use crate::analysis::engine::EngineSnapshot;
+use crate::analysis::engine::snapshot::EngineSnapshot;
 use crate::analysis::eval::Locals;
-use crate::analysis::execution::CallSite;
+use crate::analysis::execution::outcome::CallSite;
 use crate::analysis::frame::Frame;
 use crate::analysis::state::GROUP_COUNT;
 use crate::syntax::gcodes::GCode;

@@ -160,7 +160,7 @@ impl ProgramUnit {
 
     /// Whether the program is a subprogram by its `PROC` line.
     pub fn has_proc_header(&self) -> bool {
-        crate::analysis::has_proc_header(&self.text)
+        crate::analysis::program_kind::has_proc_header(&self.text)
     }
 
     pub fn line_count(&self) -> usize {
@@ -223,7 +223,8 @@ impl ProgramUnit {
                     | Statement::Return { .. }
                     | Statement::Instruction { .. } => flow.has_flow = true,
                     Statement::Address(word) if index != last_line => {
-                        flow.has_flow |= crate::analysis::execution::ends_program(word).is_some();
+                        flow.has_flow |=
+                            crate::analysis::execution::outcome::ends_program(word).is_some();
                     }
                     _ => {}
                 }
@@ -260,7 +261,9 @@ fn plain_block(block: &Block) -> bool {
         && block.statements.iter().all(|statement| match statement {
             Statement::GCode { .. } | Statement::UnknownGCode { .. } => true,
             Statement::Assignment { .. } => true,
-            Statement::Address(word) => crate::analysis::execution::ends_program(word).is_none(),
+            Statement::Address(word) => {
+                crate::analysis::execution::outcome::ends_program(word).is_none()
+            }
             _ => false,
         })
 }

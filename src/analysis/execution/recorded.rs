@@ -9,20 +9,21 @@
 //! start, which the tests check after random edits.
 
 use crate::analysis::execution::entry::RunSetup;
-use crate::analysis::execution::interpreter::{Interpreter, RunEnd};
+use crate::analysis::execution::interpreter::Interpreter;
 use crate::analysis::execution::library_macros::LibraryMacros;
+use crate::analysis::execution::outcome::{ExecutedMove, Execution};
 use crate::analysis::execution::program::ProgramUnit;
 use crate::analysis::execution::resume::{
     unit_paths, Checkpoint, PassDelta, Recorder, Rejoin, NEVER,
 };
-use crate::analysis::execution::{ExecutedMove, Execution, ExecutionOptions};
+use crate::analysis::execution::run_program::add_stage_findings;
+use crate::analysis::execution::ways::RunEnd;
 use crate::analysis::library::{LibraryProgram, ProgramLibrary};
-use crate::analysis::ProgramKind;
-use crate::config::MachineConfig;
+use crate::analysis::program_kind::ProgramKind;
+use crate::config::{execution::ExecutionOptions, MachineConfig};
 use crate::diagnostics::LineDiagnostic;
 use crate::syntax::LineParser;
-use std::collections::HashMap;
-use std::sync::Arc;
+use std::{collections::HashMap, sync::Arc};
 
 /// How a recorded run was made, for tests and figures.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -85,7 +86,7 @@ impl RecordedRun {
             return self;
         };
         if let Some((path, findings)) = path_of(&self.moves, config, main.text()) {
-            super::add_stage_findings(&mut self.execution.findings, findings);
+            add_stage_findings(&mut self.execution.findings, findings);
             self.path_moves = Arc::new(path);
         }
         self

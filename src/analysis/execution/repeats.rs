@@ -1,9 +1,10 @@
 //! Section repetitions (`REPEAT L1 [L2 | ENDLABEL] P=n`, `REPEATB L1 P=n`, reference §17.7): where
 //! a repetition starts, and where the program goes once a repeated section ends.
 
-use crate::analysis::engine::Engine;
+use crate::analysis::engine::engine_state::Engine;
 use crate::analysis::eval::evaluate;
-use crate::analysis::execution::interpreter::{Interpreter, Next};
+use crate::analysis::execution::block_run::Next;
+use crate::analysis::execution::interpreter::Interpreter;
 use crate::analysis::execution::paths::{Control, RepeatFrame};
 use crate::diagnostics::{Code, Span};
 use crate::syntax::ast::{Block, ExprId};

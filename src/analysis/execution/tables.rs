@@ -3,7 +3,7 @@
 //! state it had before the definition (Siemens Programming Manual, Job planning, "Curve tables").
 //! The variables the definition computes keep their values: only the motion state comes back.
 
-use crate::analysis::engine::Engine;
+use crate::analysis::engine::engine_state::Engine;
 use crate::analysis::execution::interpreter::Interpreter;
 use crate::analysis::execution::paths::Control;
 use crate::syntax::ast::{Block, Statement};

@@ -7,8 +7,9 @@
 //! Moves of programs without these words pass straight through.
 
 use super::corner_geometry::{self, Corner, Element, NoCorner};
-use crate::analysis::engine::{ArcMove, CornerElement};
-use crate::analysis::execution::ExecutedMove;
+use crate::analysis::engine::corner_requests::CornerElement;
+use crate::analysis::engine::moves::ArcMove;
+use crate::analysis::execution::outcome::ExecutedMove;
 use crate::config::MachineConfig;
 use crate::diagnostics::{Code, Diagnostic, LineDiagnostic, Span};
 use std::borrow::Cow;
@@ -271,7 +272,7 @@ impl<'c> CornerStage<'c> {
         &self,
         held: &ExecutedMove,
         next: &ExecutedMove,
-        request: &crate::analysis::engine::ContourRequest,
+        request: &crate::analysis::engine::corner_requests::ContourRequest,
         corner: &Corner,
         names: (&'static str, &'static str),
         label: &'static str,
@@ -316,7 +317,7 @@ impl<'c> CornerStage<'c> {
         movement.timing.dwell = None;
         movement.timing.feed = feed;
         movement.timing.programmed_feed = match movement.timing.feed_type {
-            Some(crate::analysis::engine::spindle::FeedType::InverseTime) => None,
+            Some(crate::analysis::engine::timing::FeedType::InverseTime) => None,
             _ => feed,
         };
         movement.arc = arc;

@@ -4,13 +4,15 @@
 //! moves that other stages make (inserted roundings, cycle moves) are timed alike. What depends on a
 //! value the program does not determine (feed, spindle speed, length) is unknown, never guessed.
 
+mod axis_delta;
 mod cutting_speed;
 mod trapezoid;
 
-use crate::analysis::engine::spindle::FeedType;
-use crate::analysis::Move;
+use crate::analysis::engine::moves::Move;
+use crate::analysis::engine::timing::FeedType;
 use crate::config::timing::TimeModelKind;
 use crate::config::{AxisKind, MachineConfig};
+use axis_delta::AxisDelta;
 
 /// What a move's time counts as in the totals.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -75,19 +77,6 @@ pub struct TimeModel {
     model: TimeModelKind,
     /// The transverse axis, whose diameter G96 reads (the first configured).
     transverse: Option<String>,
-}
-
-/// The change of one axis in a move: its configuration and the distance (radius on a transverse
-/// axis, degrees on a rotary one).
-#[derive(Debug, Clone, Copy, Default)]
-pub(crate) struct AxisDelta {
-    /// The axis's index in the configuration.
-    index: usize,
-    geometry: bool,
-    rotary: bool,
-    max_velocity: f64,
-    max_acceleration: Option<f64>,
-    delta: f64,
 }
 
 impl TimeModel {

@@ -1,8 +1,8 @@
 //! Assignments through the engine, with variables defined beforehand (the definitions themselves are
 //! the business of the DEF statement).
 
+use crate::analysis::engine::engine_state::Engine;
 use crate::analysis::eval::{Value, VarType, Variables};
-use crate::analysis::Engine;
 use crate::config::MachineConfig;
 use crate::diagnostics::{Code, Diagnostic, Severity};
 use crate::syntax::{parse_line, SyntaxContext};

@@ -7,8 +7,8 @@ mod reads;
 mod variables;
 
 use super::*;
-use crate::diagnostics::Severity;
-use crate::syntax::ast::{AssignTarget, Statement};
+use crate::diagnostics::{Severity, Span};
+use crate::syntax::ast::{AssignTarget, ExprId, Statement};
 use crate::syntax::{parse_line, SyntaxContext};
 
 /// Evaluates `expression` as the value of `R0=expression`; a line the parser rejects fails the test,

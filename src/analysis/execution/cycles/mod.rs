@@ -1,19 +1,21 @@
 //! The standard drilling cycles and hole patterns as motion (reference §16), for calls of cycles the
 //! program library has no file for (a file it has runs as the control runs it). A cycle becomes NC
 //! blocks (`G0 G90 Z=1`, `G1 Z=-5`, `G4 F2`, ...) that go through the caller's
-//! [`Engine`](crate::analysis::Engine), so units, frames, the diameter mode and the feed apply to
+//! [`Engine`](crate::analysis::engine::engine_state::Engine), so units, frames, the diameter mode and the feed apply to
 //! them as to the program's own blocks. Their moves carry the line (and stack and pass) of the
 //! block that triggers the cycle, and the cycle's name.
 
+pub(super) mod cycle_state;
 mod drilling;
 mod patterns;
 
 use super::interpreter::Interpreter;
 use super::paths::{Argument, Control, ModalCall};
-use crate::analysis::engine::Engine;
+use crate::analysis::engine::engine_state::Engine;
 use crate::diagnostics::{Code, Span};
 use crate::syntax::ast::{Block, CallKind, Statement};
 use crate::syntax::{parse_line, SyntaxContext};
+use cycle_state::is_drilling;
 use drilling::{Feed, Plan, Step};
 use patterns::Pattern;
 use std::sync::Arc;
@@ -29,25 +31,11 @@ const TOOL_AXES: [&str; 3] = ["Z", "Y", "X"];
 /// towards the run's budget of executed blocks as well.
 const MAX_PATTERN_BLOCKS: usize = 1_000_000;
 
-/// What the interpreter keeps for the cycle models.
-#[derive(Default)]
-pub(super) struct CycleState {
-    /// The cycle whose blocks are running: its moves say so.
-    pub(super) current: Option<Arc<str>>,
-    /// How the cycles' blocks are read, made once per run.
-    context: Option<SyntaxContext>,
-}
-
 /// A call of a modelled cycle that no program of the library provides.
 pub(super) struct BuiltinCall {
     name: String,
     arguments: Vec<Argument>,
     span: Span,
-}
-
-/// Whether `name` (upper case) is a drilling cycle with a built-in model.
-pub(super) fn is_drilling(name: &str) -> bool {
-    drilling::DRILLING_CYCLES.contains(&name)
 }
 
 /// The block that makes a cycle run: its line in the current program level and its block number.

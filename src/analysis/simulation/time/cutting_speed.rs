@@ -3,8 +3,8 @@
 //! (`LIMS`); the time is the integral of ds / (F·n) along the path. A line has a closed form (its
 //! radius changes linearly along it), an arc is integrated numerically.
 
-use crate::analysis::engine::spindle::speed_at_radius;
-use crate::analysis::Move;
+use crate::analysis::engine::moves::Move;
+use crate::analysis::engine::timing::speed_at_radius;
 
 /// Intervals of the numerical integration over an arc (Simpson's rule; even).
 const ARC_INTERVALS: usize = 512;

@@ -1,5 +1,6 @@
 use super::*;
-use crate::analysis::{visit_moves_and_dwells, ProgramKind};
+use crate::analysis::program_kind::ProgramKind;
+use crate::analysis::whole_program::visit_moves_and_dwells;
 use crate::config::timing::TimeModelKind;
 use crate::diagnostics::Code;
 

@@ -3,7 +3,7 @@
 //! programmed feed and the axes' velocity limits, and decelerates. A lower bound of the real time:
 //! jerk, blending and look-ahead are not modelled.
 
-use super::AxisDelta;
+use super::axis_delta::AxisDelta;
 
 /// Seconds of a block whose axes move by `deltas`; `feed` is the path length and the velocity to
 /// reach (per minute) of a feed move, `None` for G0 (the path over all axes at their limits). On an
