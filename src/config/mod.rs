@@ -3,6 +3,7 @@
 
 pub mod contours;
 pub mod cycles;
+pub mod edit;
 pub mod execution;
 mod file;
 pub mod timing;

@@ -1010,10 +1010,7 @@ impl<'a> Parser<'a> {
             self.report(
                 Code::AxisNotConfigured,
                 span,
-                format!(
-                    "`{name}` is not an axis of the configured machine ({}); positions on it cannot be resolved",
-                    self.context.axis_list()
-                ),
+                super::unconfigured_axes::occurrence_message(&name, &self.context.axis_list()),
             );
         }
     }
