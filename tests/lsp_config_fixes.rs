@@ -28,7 +28,9 @@ async fn actions_for(
     client.open(&uri, 1, text).await;
     let diagnostics = client.diagnostics(&uri, 1).await;
     assert!(
-        diagnostics.iter().any(|diagnostic| diagnostic["code"] == code),
+        diagnostics
+            .iter()
+            .any(|diagnostic| diagnostic["code"] == code),
         "{code} expected in {diagnostics:#?}"
     );
     let actions = client
@@ -109,10 +111,9 @@ async fn diameter_programming_on_a_mill_configures_a_lathe() {
     let config = config_of(&text);
     let findings = diagnose_program(LATHE_PROGRAM, &config, ProgramKind::Main);
     assert!(
-        findings.iter().all(|item| !matches!(
-            item.diagnostic.code.as_str(),
-            "A235" | "A236"
-        )),
+        findings
+            .iter()
+            .all(|item| !matches!(item.diagnostic.code.as_str(), "A235" | "A236")),
         "{findings:#?}"
     );
 
@@ -179,7 +180,11 @@ async fn an_axis_the_machine_does_not_have_is_added_to_the_axes() {
         ("C", AxisKind::Modulo),
         ("Y", AxisKind::Linear),
     ] {
-        assert_eq!(config.axis(name).map(|axis| axis.kind), Some(kind), "{text}");
+        assert_eq!(
+            config.axis(name).map(|axis| axis.kind),
+            Some(kind),
+            "{text}"
+        );
     }
     let findings = diagnose_program(program, &config, ProgramKind::Main);
     let axes: Vec<&str> = findings
