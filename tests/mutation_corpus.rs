@@ -1,6 +1,6 @@
 //! Realistic mistakes put into the clean real programs of `../shared/corpus/real`, one mistake per
 //! copy: `check` must report each on its line with the expected code. The test prints a table of the
-//! catch rate per kind of mistake, and fails when a kind that is checked is missed in any program.
+//! catch rate per kind of mistake, and fails when any kind is missed in any program.
 //!
 //! A program is clean when `check` reports no error on it. The mistake is a block inserted after the
 //! program's first G0/G1 block, where definitions are over and the modal state is the program's own.
@@ -17,15 +17,20 @@ use std::collections::{BTreeMap, HashSet};
 use std::path::Path;
 use std::process::Command;
 
-/// One kind of mistake: the block inserted and the code `check` must report on it. A kind that is
-/// not `checked` yet (the checker misses it in some or all programs) has its rate printed, and the
-/// test fails once it is caught everywhere, so that the kind moves to the checked ones.
+/// One kind of mistake: the block inserted and the code `check` must report on it.
 struct Mistake {
     name: &'static str,
     block: &'static str,
     code: &'static str,
-    checked: bool,
 }
+
+/// The codes of which one finding is reported per program, at the first block that needs a lathe
+/// (A235 for DIAMON and the like, A236 for G96; both say to configure a lathe, which is one fix): in
+/// a program whose original already has one of them (a lathe program read with the mill's axes that
+/// writes DIAMON or G96 before its first linear block) the inserted block repeats what the user has
+/// been told at the program's first use, so it is no new mistake and that program does not count for
+/// these kinds. Every other program must report it on the inserted line.
+const ONCE_PER_PROGRAM: &[&str] = &["A235", "A236"];
 
 const MISTAKES: &[Mistake] = &[
     // The ten classic mistakes.
@@ -48,33 +53,17 @@ const MISTAKES: &[Mistake] = &[
     mistake("frame value without =", "TRANS X _CPA", "S151"),
     mistake("I on a G0 line", "G0 X5 I5", "A229"),
     mistake("circle given two ways", "G2 X5 Y5 I5 J0 CR=5", "A230"),
-    partly("radius zero", "G2 X=IC(0) Y=IC(0) I0 J0", "A231"),
+    mistake("radius zero", "G2 X=IC(0) Y=IC(0) I0 J0", "A231"),
     mistake("CIP without intermediate point", "CIP X5 Y5", "A232"),
-    partly("pole with one coordinate", "G111 X10", "A233"),
-    partly("AR without end point", "G3 AR=90", "A209"),
-    partly("DIAMON on a mill", "DIAMON", "A235"),
-    partly("G96 on a mill", "G96 S100", "A236"),
+    mistake("pole with one coordinate", "G111 X10", "A233"),
+    mistake("AR without end point", "G3 AR=90", "A209"),
+    mistake("DIAMON on a mill", "DIAMON", "A235"),
+    mistake("G96 on a mill", "G96 S100", "A236"),
 ];
 
-/// A kind of mistake the checker catches in some programs only: where the plane or the positions
-/// of a subprogram are inherited, or where the program has been reported once already.
-const fn partly(name: &'static str, block: &'static str, code: &'static str) -> Mistake {
-    Mistake {
-        name,
-        block,
-        code,
-        checked: false,
-    }
-}
-
-/// A kind of mistake the checker catches everywhere.
+/// A kind of mistake, which the checker must catch in every clean program.
 const fn mistake(name: &'static str, block: &'static str, code: &'static str) -> Mistake {
-    Mistake {
-        name,
-        block,
-        code,
-        checked: true,
-    }
+    Mistake { name, block, code }
 }
 
 /// The 0-based index of the first line that is a G0 or G1 block, if any.
@@ -180,11 +169,20 @@ fn check_reports_every_mistake_put_into_clean_real_programs() {
         .filter(|(file, _, _, severity)| file.contains("_K0.") && severity == "error")
         .map(|(file, ..)| file.split('_').next().unwrap_or_default().to_string())
         .collect();
+    // The original programs that already have a finding reported once per program.
+    let reported_before: HashSet<String> = findings
+        .iter()
+        .filter(|(file, _, code, _)| {
+            file.contains("_K0.") && ONCE_PER_PROGRAM.contains(&code.as_str())
+        })
+        .map(|(file, ..)| file.split('_').next().unwrap_or_default().to_string())
+        .collect();
     let found: HashSet<(String, u64, String)> = findings
         .into_iter()
         .map(|(file, line, code, _)| (file, line, code))
         .collect();
     let mut caught: BTreeMap<usize, (usize, Vec<String>)> = BTreeMap::new();
+    let mut not_applicable: BTreeMap<usize, usize> = BTreeMap::new();
     let mut clean = 0;
     for (index, (relative, after, extension)) in programs.iter().enumerate() {
         if unclean.contains(&format!("P{index}")) {
@@ -195,6 +193,11 @@ fn check_reports_every_mistake_put_into_clean_real_programs() {
             let file = format!("P{index}_K{}.{extension}", kind + 1);
             let line = *after as u64 + 2;
             let entry = caught.entry(kind).or_default();
+            let once = ONCE_PER_PROGRAM.contains(&mistake.code);
+            if once && reported_before.contains(&format!("P{index}")) {
+                *not_applicable.entry(kind).or_default() += 1;
+                continue;
+            }
             let reported = found.contains(&(file, line, mistake.code.to_string()));
             if reported {
                 entry.0 += 1;
@@ -208,17 +211,22 @@ fn check_reports_every_mistake_put_into_clean_real_programs() {
         "only {clean} clean programs: the corpus or the checker changed"
     );
 
-    println!("{clean} clean programs, one mistake per copy:");
-    println!("{:<34} {:>6} {:>8}  missed in", "mistake", "code", "caught");
+    println!("{clean} clean programs, one mistake per copy (n/a: the original reports the code already, once per program):");
+    println!(
+        "{:<34} {:>6} {:>8} {:>4}  missed in",
+        "mistake", "code", "caught", "n/a"
+    );
     let mut failures = Vec::new();
     for (kind, mistake) in MISTAKES.iter().enumerate() {
         let (hits, missed) = &caught[&kind];
-        let share = 100.0 * *hits as f64 / clean as f64;
+        let skipped = not_applicable.get(&kind).copied().unwrap_or(0);
+        let share = 100.0 * *hits as f64 / (hits + missed.len()).max(1) as f64;
         println!(
-            "{:<34} {:>6} {:>7.1}%  {}",
+            "{:<34} {:>6} {:>7.1}% {:>4}  {}",
             mistake.name,
             mistake.code,
             share,
+            skipped,
             missed
                 .iter()
                 .take(3)
@@ -226,21 +234,20 @@ fn check_reports_every_mistake_put_into_clean_real_programs() {
                 .collect::<Vec<_>>()
                 .join(", ")
         );
-        if mistake.checked && !missed.is_empty() {
+        if !missed.is_empty() {
             failures.push(format!(
                 "{}: missed in {} programs",
                 mistake.name,
                 missed.len()
             ));
         }
-        if !mistake.checked && missed.is_empty() {
+        // Programs left out must stay few: the kind is to be checked where it is a mistake.
+        if skipped * 4 > clean {
             failures.push(format!(
-                "{}: caught everywhere now; mark it checked",
+                "{}: {skipped} of {clean} programs report it already",
                 mistake.name
             ));
         }
     }
-    let not_checked = MISTAKES.iter().filter(|mistake| !mistake.checked).count();
-    println!("{not_checked} kinds are not fully checked yet");
     assert!(failures.is_empty(), "{}", failures.join("\n"));
 }

@@ -5,6 +5,7 @@
 
 pub mod contours;
 pub mod cycles;
+pub mod edit;
 pub mod execution;
 mod file;
 mod file_keys;

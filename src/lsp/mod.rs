@@ -23,6 +23,7 @@ mod arriving_open;
 mod call_sites;
 mod code_action;
 mod completion;
+mod config_fixes;
 mod convert;
 mod cross_file;
 mod diagnostics_array;

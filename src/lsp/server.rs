@@ -5,6 +5,7 @@
 
 use crate::analysis::ProgramKind;
 use crate::lsp::code_action::code_actions;
+use crate::lsp::config_fixes;
 use crate::lsp::convert::PositionEncoding;
 use crate::lsp::documents::{lock, Analysed, Documents, OpenDocument, WorkerContext};
 use crate::lsp::endpoint_preview;
@@ -1008,8 +1009,20 @@ impl LanguageServer for Backend {
         let encoding = self.encoding();
         let uri = params.text_document.uri.clone();
         let range = params.range;
+        let settings = lock(&self.settings).clone();
+        let root = lock(&self.info).workspace_root.clone();
+        let document_path = file_path(&uri);
         self.on_analysis(&params.text_document.uri, move |analysed| {
-            Some(code_actions(analysed, &uri, range, encoding))
+            let mut actions = code_actions(analysed, &uri, range, encoding);
+            actions.extend(config_fixes::actions_for(
+                analysed,
+                range,
+                document_path.as_deref(),
+                &settings,
+                root.as_deref(),
+                encoding,
+            ));
+            Some(actions)
         })
         .await
     }

@@ -10,6 +10,7 @@ pub mod lexer;
 pub mod lines;
 pub mod parser;
 pub mod structure;
+pub mod unconfigured_axes;
 
 pub use ast::Block;
 pub use context::SyntaxContext;
@@ -76,6 +77,7 @@ pub fn visit_blocks_with_macros(
         item.diagnostic.severity = config.severity_of(item.diagnostic.code);
     }
     out.sort_by_key(|item| (item.line, item.diagnostic.span.start()));
+    unconfigured_axes::summarize(&mut out);
     out
 }
 

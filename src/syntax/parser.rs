@@ -688,9 +688,42 @@ impl<'a> Parser<'a> {
         let open = self.advance();
         let mut depth = 1usize;
         let mut close = None;
+        // Text, not an expression: two operands side by side (`TOOL 1`, `T1 D1 FINISH`), or one
+        // name without digits (`ROUGHING`); an operator or a comma makes it a value.
+        let mut text_like = false;
+        let mut operands = 0usize;
+        let mut operators = 0usize;
+        // The previous token when it was an operand, and whether it was a single letter.
+        let mut previous_operand: Option<(Span, bool)> = None;
         while self.position < self.lexemes.len() && self.peek() != Some(Token::Comment) {
             let token = self.peek();
             let span = self.advance();
+            let operand = matches!(
+                token,
+                Some(
+                    Token::Number
+                        | Token::Letter
+                        | Token::Identifier
+                        | Token::SystemVariable
+                        | Token::String
+                )
+            );
+            if depth == 1 && operand {
+                // A letter and the digits right after it are one word (`R1`, `X10`).
+                let joined = previous_operand.is_some_and(|(previous, letter)| {
+                    letter && previous.end() == span.start() && token == Some(Token::Number)
+                });
+                if previous_operand.is_some() && !joined {
+                    text_like = true;
+                }
+                if !joined {
+                    operands += 1;
+                }
+                previous_operand = Some((span, token == Some(Token::Letter)));
+            } else if !matches!(token, Some(Token::RightParen)) || depth > 1 {
+                previous_operand = None;
+                operators += 1;
+            }
             match token {
                 Some(Token::LeftParen) => depth += 1,
                 Some(Token::RightParen) => {
@@ -712,11 +745,20 @@ impl<'a> Parser<'a> {
             return;
         };
         let span = open.to(close);
+        let single_name = operands == 1
+            && operators == 0
+            && self.line[open.end()..close.start()]
+                .trim()
+                .bytes()
+                .all(|byte| byte.is_ascii_alphabetic() || byte == b'_');
+        let text_like = text_like || single_name;
         let inner = self.line[open.end()..close.start()].trim().to_string();
         let message = format!(
             "`({inner})` is not a comment in Siemens mode: parentheses hold expressions, comments start with `;`"
         );
-        if self.at_end() && self.block.comment.is_none() {
+        if text_like && self.at_end() && self.block.comment.is_none() {
+            // Only text becomes a comment: a value (`M202(0.0024)`, arguments, an expression) would
+            // be deleted by it.
             let fix = Fix::replace(
                 format!("Make it a comment: `; {inner}`"),
                 span,
@@ -1010,10 +1052,7 @@ impl<'a> Parser<'a> {
             self.report(
                 Code::AxisNotConfigured,
                 span,
-                format!(
-                    "`{name}` is not an axis of the configured machine ({}); positions on it cannot be resolved",
-                    self.context.axis_list()
-                ),
+                super::unconfigured_axes::occurrence_message(&name, &self.context.axis_list()),
             );
         }
     }
@@ -2160,6 +2199,12 @@ impl<'a> Parser<'a> {
         else {
             return;
         };
+        let (mut first_token, mut end_token) = (first_token, end_token);
+        // A condition wholly in brackets (`IF (A>=1 OR B>=1)`): its operators are inside them.
+        while end_token > first_token + 2 && self.wholly_bracketed(first_token, end_token) {
+            first_token += 1;
+            end_token -= 1;
+        }
         if end_token <= first_token {
             return;
         }
@@ -2225,11 +2270,36 @@ impl<'a> Parser<'a> {
             }
         }
         let span = self.span_at(first_token).to(self.span_at(end_token - 1));
+        if text == self.text(span) {
+            // No comparison stands between the operators at this level: nothing to bracket.
+            return;
+        }
         self.diagnostics[index].fix = Some(Fix::replace(
             format!("Bracket the comparisons: `{text}`"),
             span,
             text,
         ));
+    }
+
+    /// Whether the tokens `first..end` are one pair of round brackets and what they enclose.
+    fn wholly_bracketed(&self, first: usize, end: usize) -> bool {
+        if self.token_at(first) != Some(Token::LeftParen)
+            || self.token_at(end - 1) != Some(Token::RightParen)
+        {
+            return false;
+        }
+        let mut depth = 0i32;
+        for token_index in first..end {
+            match self.token_at(token_index) {
+                Some(Token::LeftParen) | Some(Token::LeftBracket) => depth += 1,
+                Some(Token::RightParen) | Some(Token::RightBracket) => depth -= 1,
+                _ => {}
+            }
+            if depth == 0 && token_index + 1 < end {
+                return false;
+            }
+        }
+        depth == 0
     }
 
     fn jump_keyword_here(&self) -> Option<StatementKeyword> {
@@ -3057,18 +3127,31 @@ impl<'a> Parser<'a> {
                 (Code::UnbalancedBrackets, "]")
             };
             let end = self.previous_end();
-            let fix = Fix::replace(format!("Insert `{closing}`"), Span::new(end, end), closing);
             let found = if self.at_end() {
                 "the end of the block".to_string()
             } else {
                 format!("`{}`", self.text(self.current_span()))
             };
-            self.report_with_fix(
-                code,
-                open,
-                format!("this `{}` is not closed before {found}", self.text(open)),
-                fix,
-            );
+            let message = format!("this `{}` is not closed before {found}", self.text(open));
+            // Inserting the bracket helps only when the block has fewer closing brackets than
+            // opening ones; else something else stopped the reading (`SIN(30$0)`), and a bracket
+            // inserted here would leave one too many.
+            let opening = if token == Token::RightParen {
+                Token::LeftParen
+            } else {
+                Token::LeftBracket
+            };
+            let count = |wanted: Token| {
+                (0..self.lexemes.len())
+                    .filter(|&index| self.token_at(index) == Some(wanted))
+                    .count()
+            };
+            if count(opening) > count(token) {
+                let fix = Fix::replace(format!("Insert `{closing}`"), Span::new(end, end), closing);
+                self.report_with_fix(code, open, message, fix);
+            } else {
+                self.report(code, open, message);
+            }
         }
         Span::new(self.previous_end(), self.previous_end())
     }

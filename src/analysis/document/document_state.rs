@@ -193,10 +193,15 @@ impl DocumentAnalysis {
     /// from-scratch analysis: by line and column, end-of-program findings after the others. Without
     /// end-of-program findings (the common case) nothing is copied.
     pub(super) fn combine(&mut self) {
-        self.combined = (!self.tail.is_empty()).then(|| {
+        // S180 is reported once per axis and file, with the count of its blocks: a fact of the whole
+        // document, worked out here from the findings of every line (the update then says no
+        // FindingsChange, and the server compares the published findings instead).
+        let axes = crate::syntax::unconfigured_axes::any(&self.body);
+        self.combined = (!self.tail.is_empty() || axes).then(|| {
             let mut combined = self.body.clone();
             combined.extend(self.tail.iter().cloned());
             combined.sort_by_key(|item| (item.line, item.diagnostic.span.start()));
+            crate::syntax::unconfigured_axes::summarize(&mut combined);
             combined
         });
     }

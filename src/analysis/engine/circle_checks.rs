@@ -134,6 +134,22 @@ impl Engine<'_> {
             ));
             return true;
         }
+        if self.plane_axes().0.is_none()
+            && written.opening_angle.is_some()
+            && written.centre.is_none()
+            && written.radius.is_none()
+            && written.polar.is_none()
+            && !self.writes_geometry_axis(block)
+        {
+            // `G3 AR=90` alone where the plane is inherited: no end point and no centre in any plane
+            // (where the plane is known `resolve_circle` reports it).
+            diagnostics.push(Diagnostic::new(
+                Code::CircleWithoutCentre,
+                span,
+                "AR needs the end point or the centre (I, J, K) of the circle: neither is given, whatever the plane",
+            ));
+            return true;
+        }
         if let Some(radius_span) = written.radius {
             let other = match (written.centre, written.opening_angle) {
                 (Some(_), _) => Some("I/J/K"),
@@ -173,14 +189,34 @@ impl Engine<'_> {
         false
     }
 
+    /// Whether the block writes a geometry axis (an axis of any of the three planes).
+    fn writes_geometry_axis(&self, block: &CircleBlock) -> bool {
+        block.statements.iter().any(|statement| match statement {
+            Statement::Address(word) if word.kind == AddressKind::Axis => self
+                .axes
+                .index(self.config, block.line, word)
+                .is_none_or(|index| {
+                    self.plane_axis_cache
+                        .iter()
+                        .any(|(first, second)| [*first, *second].contains(&Some(index)))
+                }),
+            _ => false,
+        })
+    }
+
     /// Whether the programmed centre is the start point; `None` when a value is unknown.
     fn centre_is_start(&self, block: &CircleBlock) -> Option<bool> {
-        let (Some(first), Some(second)) = self.plane_axes() else {
-            return None;
-        };
         if block.words.centre_unknown {
             return None;
         }
+        let (Some(first), Some(second)) = self.plane_axes() else {
+            // The plane is inherited and unknown: centre offsets that are all 0 (`I0 J0`, measured
+            // from the start point) put the centre on the start point in every plane.
+            let mut written = block.words.centre.iter().flatten().peekable();
+            let zero = written.peek().is_some()
+                && written.all(|(value, absolute)| !absolute && value.abs() <= SAME_POINT);
+            return zero.then_some(true);
+        };
         let mut offsets = [0.0; 2];
         for (offset, index) in offsets.iter_mut().zip([first, second]) {
             let slot = self.slots.slot(index)?;
@@ -268,18 +304,40 @@ impl Engine<'_> {
         if !matches!(code.name().as_ref(), "G110" | "G111" | "G112") || written.polar.is_some() {
             return;
         }
-        let (Some(first), Some(second)) = self.plane_axes() else {
-            return;
-        };
         // The axis words of a pole block are not applied as moves, so they are looked up here.
-        let given = [first, second].map(|index| {
+        let given = |index: usize| {
             statements.iter().any(|statement| match statement {
                 Statement::Address(word) if word.kind == AddressKind::Axis => {
                     self.axes.index(self.config, block.line, word) == Some(index)
                 }
                 _ => false,
             })
-        });
+        };
+        let (Some(first), Some(second)) = self.plane_axes() else {
+            // The plane is inherited and unknown: one geometry axis alone is one coordinate (or none)
+            // of every plane.
+            let mut geometry: Vec<usize> = self
+                .plane_axis_cache
+                .iter()
+                .flat_map(|(first, second)| [*first, *second])
+                .flatten()
+                .collect();
+            geometry.sort_unstable();
+            geometry.dedup();
+            let written: Vec<usize> = geometry.into_iter().filter(|index| given(*index)).collect();
+            if let [only] = written[..] {
+                diagnostics.push(Diagnostic::new(
+                    Code::PoleWithOneCoordinate,
+                    super::statements_span(statements).unwrap_or_default(),
+                    format!(
+                        "the pole is given by {} alone: whatever the plane, a coordinate of the plane is missing, which is not documented; write both coordinates of the plane",
+                        self.config.axes[only].name
+                    ),
+                ));
+            }
+            return;
+        };
+        let given = [given(first), given(second)];
         if given[0] == given[1] {
             return;
         }

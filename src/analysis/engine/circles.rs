@@ -375,6 +375,11 @@ impl Engine<'_> {
         };
         let absolute = matches!(word.value.modifier, Some((Modifier::Ac, _)));
         let value = self.word_value(line, block, word, diagnostics);
+        if value == Some(0.0) {
+            // 0 is 0 in every unit and as a diameter: known where the units are inherited.
+            circle_words.centre[slot] = Some((0.0, absolute));
+            return;
+        }
         let (Some(value), Some(factor)) = (value, self.state.length_factor(self.config.metric))
         else {
             circle_words.centre_unknown = true;
