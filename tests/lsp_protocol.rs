@@ -680,6 +680,30 @@ async fn the_modal_state_request_gives_the_state_after_a_block() {
 }
 
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn the_modal_state_says_whether_the_diameter_mode_belongs_to_the_machine() {
+    // DIAMOF is the reset state of a mill too; only a lathe has the transverse axis it acts on.
+    let text = "N10 G90 G1 X20 Z90 F100\n";
+    let mut mill = initialized_client().await;
+    mill.open(SEED_URI, 1, text).await;
+    mill.diagnostics(SEED_URI, 1).await;
+    let state = json!({"uri": SEED_URI, "line": 0});
+    let on_mill = mill.request("sinumerik/modalState", state.clone()).await;
+    let on_mill = on_mill.expect("an answer");
+    assert_eq!(on_mill["diameter"], "DIAMOF", "{on_mill}");
+    assert_eq!(on_mill["diameterAxis"], false, "{on_mill}");
+    let mut lathe = TestClient::in_process();
+    lathe
+        .initialize(json!({}), json!({"machineKind": "turn"}))
+        .await;
+    lathe.open(SEED_URI, 1, text).await;
+    lathe.diagnostics(SEED_URI, 1).await;
+    let on_lathe = lathe.request("sinumerik/modalState", state).await;
+    let on_lathe = on_lathe.expect("an answer");
+    assert_eq!(on_lathe["diameter"], "DIAMON", "{on_lathe}");
+    assert_eq!(on_lathe["diameterAxis"], true, "{on_lathe}");
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
 async fn the_outline_and_the_folding_ranges_follow_the_program() {
     let mut client = initialized_client().await;
     let uri = "file:///nonexistent/PART.SPF";

@@ -3,7 +3,8 @@
 # First the Rust suite: unit tests, end-to-end tests of the CLI, the data-driven fixtures and the
 # real-program corpus (which skips with a message when ../shared/corpus/real is absent). Then the
 # editor clients against the release binary: the VS Code extension (unit, grammar, headless-Chromium
-# page and server-protocol tests, packaging) and the Neovim plugin (headless end-to-end test).
+# page and server-protocol tests, packaging, the package in a real VS Code) and the Neovim plugin
+# (headless end-to-end tests), and the Emacs setup of docs/editors.md.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 # Release mode matches the shipped binary and keeps the hostile-input tests fast.
@@ -22,5 +23,15 @@ echo "== VS Code extension (editors/vscode)"
   npm run package
 )
 
+# The package just made, installed into a real VS Code (code-server) and driven with headless Chromium;
+# its setup is cached in ~/.cache/sinumerik-e2e (several minutes once, then about half a minute).
+echo "== VS Code extension in a real VS Code (editors/vscode/test/e2e)"
+bash editors/vscode/test/e2e/run.sh
+
 echo "== Neovim plugin (editors/neovim)"
 bash editors/neovim/test/run.sh
+
+# The Emacs setup of docs/editors.md (eglot), evaluated from the document itself; the other editors'
+# snippets there cannot run headless on this machine.
+echo "== Emacs eglot setup (editors/emacs)"
+bash editors/emacs/test/run.sh

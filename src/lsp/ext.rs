@@ -56,6 +56,9 @@ pub struct ModalStateResult {
     pub units: Option<String>,
     pub distance: Option<String>,
     pub diameter: Option<String>,
+    /// Whether the machine has a transverse axis (a lathe): only there does diameter programming
+    /// mean anything, so a status bar shows `diameter` only when this is true.
+    pub diameter_axis: bool,
     pub settable_offset: Option<String>,
     /// The modal feed in the basic unit system.
     pub feed: Option<f64>,

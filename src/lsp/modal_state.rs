@@ -5,6 +5,7 @@
 
 use crate::analysis::library::ProgramLibrary;
 use crate::analysis::ProgramKind;
+use crate::config::AxisKind;
 use crate::lsp::documents::Analysed;
 use crate::lsp::ext::{ModalStateResult, ProgramTime};
 
@@ -26,6 +27,14 @@ pub fn modal_state_at(
         dwell_s: totals.dwell_s,
         unknown_moves: totals.unknown_moves,
     };
+    // DIAMOF is the reset state of every machine, also of a mill, where diameter programming has no
+    // axis to act on; the client hides it there.
+    let diameter_axis = analysed
+        .analysis
+        .config()
+        .axes
+        .iter()
+        .any(|axis| axis.kind == AxisKind::Transverse);
     let needs_run = after.flow_uncertain || analysed.analysis.kind() == ProgramKind::Subprogram;
     if needs_run {
         let execution = analysed.execution(library);
@@ -36,6 +45,7 @@ pub fn modal_state_at(
                 units: first.units(),
                 distance: first.distance(),
                 diameter: first.diameter(),
+                diameter_axis,
                 settable_offset: first.settable_offset(),
                 feed: first.feed,
                 // The run follows the control's way: its first pass is not uncertain for flow.
@@ -51,6 +61,7 @@ pub fn modal_state_at(
         units: after.units,
         distance: after.distance,
         diameter: after.diameter,
+        diameter_axis,
         settable_offset: after.settable_offset,
         feed: after.feed,
         flow_uncertain: after.flow_uncertain,

@@ -8,3 +8,6 @@ echo "$(nvim --version | head -n 1), server ${SINUMERIK_LSP_BIN:-target/release/
 # The test stops itself after its waits; the timeout only guards against a Neovim that never starts.
 timeout 300 nvim --headless -u NONE -i NONE -n --cmd 'set rtp+=editors/neovim' \
   -c 'luafile editors/neovim/test/e2e.lua'
+# The help, the health check and :SinumerikToolpath (with the viewer stubbed).
+timeout 300 nvim --headless -u NONE -i NONE -n --cmd 'set rtp+=editors/neovim' \
+  -c 'luafile editors/neovim/test/ecosystem.lua'

@@ -1,7 +1,8 @@
 -- The SINUMERIK language server in Neovim: starts `sinumerik-lsp serve` for buffers of filetype
 -- `sinumerik` (vim.lsp.start where it exists, vim.lsp.start_client on Neovim 0.7), passes the
--- settings, lists the resolved block end points in the quickfix list (:SinumerikPreview), and
--- renumbers and formats programs with the server's commands (:SinumerikRenumber, :SinumerikFormat).
+-- settings, lists the resolved block end points in the quickfix list (:SinumerikPreview), shows the
+-- toolpath as SVG (:SinumerikToolpath, in toolpath.lua), and renumbers and formats programs with the
+-- server's commands (:SinumerikRenumber, :SinumerikFormat). `:checkhealth sinumerik` is health.lua.
 local M = {}
 
 local PREVIEW_COMMAND = 'sinumerik.endpointPreview'
@@ -26,6 +27,8 @@ local defaults = {
   root_markers = { 'sinumerik.toml', '.git' },
   on_attach = nil,
   capabilities = nil,
+  -- Opens the SVG of :SinumerikToolpath; nil: the system viewer (vim.ui.open, xdg-open, open).
+  viewer = nil,
 }
 
 M.options = vim.deepcopy(defaults)
@@ -287,6 +290,12 @@ function M.format(bufnr, done)
   rewrite(bufnr, 'formatting', FORMAT_COMMAND, {}, done)
 end
 
+--- Writes the toolpath of `bufnr` as SVG (`sinumerik-lsp preview --format svg`) and opens it with the
+--- viewer; `done(path | nil, error)` is called once the file is written (for scripts and tests).
+function M.toolpath(bufnr, done)
+  require('sinumerik.toolpath').show(bufnr, M.options, done)
+end
+
 --- The buffer-local commands of a SINUMERIK buffer, and completion with <C-x><C-o> from the server
 --- (Neovim 0.7 does not set 'omnifunc' for LSP buffers itself; one set by the user stays).
 function M.prepare_buffer(bufnr)
@@ -329,6 +338,9 @@ function M.setup(options)
   vim.api.nvim_create_user_command('SinumerikPreview', function()
     M.preview(0)
   end, { desc = 'List the resolved end point of every moving block in the quickfix list' })
+  vim.api.nvim_create_user_command('SinumerikToolpath', function()
+    M.toolpath(0)
+  end, { desc = 'Write the toolpath as SVG and open it with the system viewer' })
   -- Buffers that were opened before setup.
   for _, buf in ipairs(vim.api.nvim_list_bufs()) do
     if vim.api.nvim_buf_is_loaded(buf) and vim.bo[buf].filetype == 'sinumerik' then

@@ -1,5 +1,6 @@
 // The status-bar item: the modal state at the cursor from the server's `sinumerik/modalState`
 // request, `{uri, line}` -> `{motion, plane, units, distance, diameter}` (each may be null: unknown),
+// `diameterAxis` (whether the machine has a transverse axis, so that the diameter mode means anything),
 // and `passes` when the state is that of the block's first execution in the program's run, and the
 // whole program's machining time `time` (null from an older server).
 
@@ -11,6 +12,11 @@ export interface ModalState {
   units: string | null;
   distance: string | null;
   diameter: string | null;
+  /**
+   * Whether the diameter mode belongs in the status bar: the machine has a transverse axis (a lathe).
+   * A server older than `diameterAxis` says nothing, and then a diameter mode it reports is shown.
+   */
+  diameterAxis: boolean;
   /** How often the block runs when the state is its first pass's; null: the state in program order. */
   passes: number | null;
   /** The machining time of the whole program; null when the server does not say. */
@@ -31,6 +37,7 @@ export function parseModalState(value: unknown): ModalState | null {
     units: field('units'),
     distance: field('distance'),
     diameter: field('diameter'),
+    diameterAxis: typeof record.diameterAxis === 'boolean' ? record.diameterAxis : field('diameter') !== null,
     passes: typeof record.passes === 'number' && Number.isInteger(record.passes) && record.passes >= 0 ? record.passes : null,
     time: parseProgramTime(record.time),
   };
@@ -49,12 +56,16 @@ const NAMES: Record<(typeof FIELDS)[number], string> = {
   diameter: 'diameter programming',
 };
 
-/** `G90 G71 G17 G1` in the order a programmer reads a safety block; unknown fields show `?`. */
+/**
+ * `G90 G71 G17 G1` in the order a programmer reads a safety block; unknown fields show `?`. The
+ * diameter mode follows on a lathe only: DIAMOF is the reset state of a mill too, where it means nothing.
+ */
 export function formatModalState(state: ModalState, line: number): StatusText {
-  const parts = FIELDS.filter((name) => name !== 'diameter' || state.diameter !== null).map((name) => state[name] ?? '?');
-  const unknown = FIELDS.filter((name) => state[name] === null && name !== 'diameter');
+  const shown = FIELDS.filter((name) => name !== 'diameter' || state.diameterAxis);
+  const parts = shown.map((name) => state[name] ?? '?');
+  const unknown = shown.filter((name) => state[name] === null);
   const lines = [`Modal state at line ${line + 1} (from the language server):`];
-  for (const name of FIELDS) lines.push(`${NAMES[name]}: ${state[name] ?? 'unknown'}`);
+  for (const name of shown) lines.push(`${NAMES[name]}: ${state[name] ?? 'unknown'}`);
   if (unknown.length) lines.push('? = unknown here (inherited from a caller, or after a call or a jump)');
   let pass = '';
   if (state.passes === 0) {

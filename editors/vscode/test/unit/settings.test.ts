@@ -63,6 +63,19 @@ test('the status bar reads the modal state, with ? where the server does not kno
   assert.equal(parseModalState('G1'), null);
 });
 
+test('the status bar shows the diameter mode on a lathe only, unknown there as ?', () => {
+  const mill = parseModalState({ motion: 'G1', plane: 'G17', units: 'G71', distance: 'G90', diameter: 'DIAMOF', diameterAxis: false })!;
+  const millStatus = formatModalState(mill, 0);
+  assert.equal(millStatus.text, 'G90 G71 G17 G1');
+  assert.doesNotMatch(millStatus.tooltip, /diameter/);
+  const lathe = parseModalState({ motion: 'G1', plane: 'G18', units: 'G71', distance: 'G90', diameter: 'DIAMOF', diameterAxis: true })!;
+  assert.equal(formatModalState(lathe, 0).text, 'G90 G71 G18 G1 DIAMOF');
+  const unknownOnLathe = parseModalState({ motion: 'G1', plane: 'G18', units: 'G71', distance: 'G90', diameter: null, diameterAxis: true })!;
+  const status = formatModalState(unknownOnLathe, 0);
+  assert.equal(status.text, 'G90 G71 G18 G1 ?');
+  assert.match(status.tooltip, /diameter programming: unknown/);
+});
+
 test('the status bar shows the first pass of a block that runs several times, with the pass count', () => {
   const looped = parseModalState({ motion: 'G1', plane: 'G17', units: 'G71', distance: 'G90', diameter: null, passes: 6 })!;
   const status = formatModalState(looped, 2);
