@@ -3,7 +3,9 @@
 # First the Rust suite: unit tests, end-to-end tests of the CLI, the data-driven fixtures and the
 # real-program corpus (which skips with a message when ../shared/corpus/real is absent). Then the
 # editor clients against the release binary: the VS Code extension (unit, grammar, headless-Chromium
-# page and server-protocol tests, packaging) and the Neovim plugin (headless end-to-end test).
+# page and server-protocol tests, packaging) and the Neovim plugin (headless end-to-end test). Last the
+# CI integrations (tests/ci): the check formats against their validators, the pre-commit hooks, the
+# release workflow through actionlint, `cargo install` and the dist build.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 # Release mode matches the shipped binary and keeps the hostile-input tests fast.
@@ -24,3 +26,6 @@ echo "== VS Code extension (editors/vscode)"
 
 echo "== Neovim plugin (editors/neovim)"
 bash editors/neovim/test/run.sh
+
+echo "== CI integrations (tests/ci)"
+bash tests/ci/run.sh
