@@ -4,7 +4,9 @@
 # real-program corpus (which skips with a message when ../shared/corpus/real is absent). Then the
 # editor clients against the release binary: the VS Code extension (unit, grammar, headless-Chromium
 # page and server-protocol tests, packaging, the package in a real VS Code) and the Neovim plugin
-# (headless end-to-end tests), and the Emacs setup of docs/editors.md.
+# (headless end-to-end tests), and the Emacs setup of docs/editors.md. Last the CI integrations
+# (tests/ci): the check formats against their validators, the pre-commit hooks, the release workflow
+# through actionlint, `cargo install` and the dist build.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 # Release mode matches the shipped binary and keeps the hostile-input tests fast.
@@ -35,3 +37,6 @@ bash editors/neovim/test/run.sh
 # snippets there cannot run headless on this machine.
 echo "== Emacs eglot setup (editors/emacs)"
 bash editors/emacs/test/run.sh
+
+echo "== CI integrations (tests/ci)"
+bash tests/ci/run.sh

@@ -72,6 +72,12 @@ pub(crate) struct CheckOptions {
 pub(crate) enum OutputFormat {
     Human,
     Json,
+    /// SARIF 2.1.0 (code scanning).
+    Sarif,
+    /// GitHub Actions workflow commands (annotations).
+    Github,
+    /// GitLab's Code Quality report.
+    Gitlab,
 }
 
 /// A command line that cannot be run, with the reason.
@@ -141,9 +147,12 @@ fn parse_check(parser: &mut lexopt::Parser) -> Result<Command, UsageError> {
                 options.format = match format.to_str() {
                     Some("human") => OutputFormat::Human,
                     Some("json") => OutputFormat::Json,
+                    Some("sarif") => OutputFormat::Sarif,
+                    Some("github") => OutputFormat::Github,
+                    Some("gitlab") => OutputFormat::Gitlab,
                     _ => {
                         return Err(UsageError(format!(
-                            "unknown format {:?} for --format (expected human or json)",
+                            "unknown format {:?} for --format (expected human, json, sarif, github or gitlab)",
                             format.to_string_lossy()
                         )))
                     }
@@ -463,6 +472,16 @@ mod tests {
     #[test]
     fn check_usage_errors() {
         assert!(parse(&["check"]).unwrap_err().0.contains("at least one"));
+        for (name, format) in [
+            ("sarif", OutputFormat::Sarif),
+            ("github", OutputFormat::Github),
+            ("gitlab", OutputFormat::Gitlab),
+        ] {
+            assert_eq!(
+                check_options(&["check", "--format", name, "a"]).format,
+                format
+            );
+        }
         assert!(parse(&["check", "--format", "xml", "a"])
             .unwrap_err()
             .0

@@ -1,10 +1,11 @@
 //! The `check` command: collects the program files, finds the configuration of each, runs the checker
 //! and prints what it reports.
 
-use super::args::{CheckOptions, OutputFormat};
+use super::args::CheckOptions;
 use super::check_index::CheckIndexes;
+use super::formats::{self, FileFindings, RunSummary};
 use super::library::{FolderLibrary, ProgramFiles};
-use super::report::{self, JsonDiagnostic, ProgramLines, SeverityCounts};
+use super::report::{ProgramLines, SeverityCounts};
 use super::source_file::read_source_file;
 use super::{EXIT_ERRORS_FOUND, EXIT_OK, EXIT_TROUBLE};
 use crate::config::{discover_config_file, load_config_file, MachineConfig};
@@ -54,10 +55,9 @@ pub(crate) fn run_check(
 
     let mut counts = SeverityCounts::default();
     let mut n_checked_files = 0;
-    let mut n_json_diagnostics = 0;
-    if options.format == OutputFormat::Json {
-        write!(stdout, "[")?;
-    }
+    let working_dir = std::env::current_dir().ok();
+    let mut output = formats::output_for(options.format, working_dir.as_deref());
+    output.begin(stdout)?;
     for path in &files {
         let folder = path.parent().unwrap_or(Path::new(""));
         let Some(config) = configs.for_folder(folder, &mut problems) else {
@@ -112,45 +112,26 @@ pub(crate) fn run_check(
             line_diagnostics.sort_by_key(|item| (item.line, item.diagnostic.span.start()));
         }
         let lines = ProgramLines::new(&source.text);
-        let path_text = path.display().to_string();
-        for (index, line_diagnostic) in line_diagnostics.iter().enumerate() {
+        for line_diagnostic in &line_diagnostics {
             counts.add(line_diagnostic.diagnostic.severity);
-            match options.format {
-                // A file of junk (a binary, an archive) can give a million findings: a person reads
-                // the first ones, so the rest are counted in the summary but not printed.
-                OutputFormat::Human if index >= MAX_HUMAN_FINDINGS_PER_FILE => {}
-                OutputFormat::Human => {
-                    report::write_human(stdout, &path_text, &lines, line_diagnostic)?
-                }
-                OutputFormat::Json => {
-                    // One object per line inside the array: valid JSON that is still easy to grep.
-                    let separator = if n_json_diagnostics == 0 { "\n" } else { ",\n" };
-                    write!(stdout, "{separator}")?;
-                    serde_json::to_writer(
-                        &mut *stdout,
-                        &JsonDiagnostic::new(&path_text, &lines, line_diagnostic),
-                    )?;
-                    n_json_diagnostics += 1;
-                }
-            }
         }
-        if options.format == OutputFormat::Human
-            && line_diagnostics.len() > MAX_HUMAN_FINDINGS_PER_FILE
-        {
-            writeln!(
-                stdout,
-                "{path_text}: {} more findings not shown (the first {MAX_HUMAN_FINDINGS_PER_FILE} of each file are; --format json lists all)",
-                line_diagnostics.len() - MAX_HUMAN_FINDINGS_PER_FILE
-            )?;
-        }
+        output.file(
+            stdout,
+            &FileFindings {
+                path_text: &path.display().to_string(),
+                lines: &lines,
+                diagnostics: &line_diagnostics,
+            },
+        )?;
     }
-    match options.format {
-        OutputFormat::Human => {
-            writeln!(stdout, "{}", report::summary_line(n_checked_files, counts))?
-        }
-        OutputFormat::Json if n_json_diagnostics == 0 => writeln!(stdout, "]")?,
-        OutputFormat::Json => writeln!(stdout, "\n]")?,
-    }
+    output.end(
+        stdout,
+        &RunSummary {
+            n_checked_files,
+            counts,
+            complete: !problems.any_problem,
+        },
+    )?;
 
     Ok(if problems.any_problem {
         EXIT_TROUBLE

@@ -4,6 +4,8 @@
 //! - `check.rs`: the `check` command: walking folders, finding each file's `sinumerik.toml`, running
 //!   the checker, exit codes.
 //! - `report.rs`: the human and JSON output formats and the byte-span to character-column conversion.
+//! - `formats/`: the output formats of `check` as one interface: human, JSON, SARIF, GitHub workflow
+//!   commands, GitLab Code Quality.
 //! - `source_file.rs`: reading program files: size limit, UTF-8 with Windows-1252 fallback, BOM.
 //! - `library.rs`: the programs a program calls, found in its folder, the parents up to its
 //!   `sinumerik.toml` and the `--cycles` folders.
@@ -11,7 +13,7 @@
 //!   back in its own encoding, `--check`).
 //!
 //! ```text
-//! sinumerik-lsp check [--format human|json] [--config FILE] [--extensions mpf,spf] [--cycles DIR]... PATH...
+//! sinumerik-lsp check [--format human|json|sarif|github|gitlab] [--config FILE] [--extensions mpf,spf] [--cycles DIR]... PATH...
 //! sinumerik-lsp --help | --version
 //! ```
 //!
@@ -29,6 +31,7 @@ mod args;
 mod check;
 mod check_index;
 mod fmt;
+mod formats;
 pub mod library;
 pub(crate) mod preview;
 mod preview_json;
@@ -65,7 +68,9 @@ Usage:
   sinumerik-lsp --version                show the version
 
 Options of check:
-  --format human|json   output format (default: human)
+  --format FORMAT       output format: human (default), json, sarif (SARIF 2.1.0),
+                        github (workflow commands that annotate a pull request),
+                        gitlab (Code Quality report)
   --config FILE         use this configuration for every program
   --extensions LIST     extensions read from folders (default: mpf,spf)
   --cycles DIR          a folder of cycles and subprograms (with its subfolders)

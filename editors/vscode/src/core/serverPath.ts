@@ -54,8 +54,9 @@ export function locateServer(lookup: ServerLookup): ServerLocation {
     found: false,
     message:
       `The SINUMERIK language server (${executableName(lookup.platform)}) was not found: this extension has no ` +
-      `bundled server for ${lookup.platform}-${lookup.arch}, and it is not on PATH. Install it with ` +
-      '`cargo install --path .` in the sinumerik-lsp repository (or put the binary on PATH), ' +
-      'or set sinumerik.server.path to the binary.',
+      `bundled server for ${lookup.platform}-${lookup.arch}, and it is not on PATH. To install it, run ` +
+      '`cargo install --locked --path .` in a checkout of the sinumerik-lsp repository (Rust 1.85 or newer; ' +
+      'it puts sinumerik-lsp in ~/.cargo/bin, on PATH), then run "SINUMERIK: Restart Language Server"; ' +
+      'or set sinumerik.server.path to a sinumerik-lsp binary you have.',
   };
 }

@@ -22,7 +22,7 @@ test('the server is the configured path, then the bundled binary, then the one o
 test('when no server exists the message says what was tried and how to fix it', () => {
   const missing = locateServer(lookup([]));
   assert.equal(missing.found, false);
-  assert.match(!missing.found ? missing.message : '', /no bundled server for linux-x64, and it is not on PATH.*cargo install --path \..*sinumerik\.server\.path/);
+  assert.match(!missing.found ? missing.message : '', /no bundled server for linux-x64, and it is not on PATH.*`cargo install --locked --path \.`.*Restart Language Server.*sinumerik\.server\.path/);
   const wrong = locateServer(lookup(['/opt/nc/bin/sinumerik-lsp'], '/typo/lsp'));
   assert.equal(wrong.found, false, 'a wrong configured path is not silently replaced by another binary');
   assert.match(!wrong.found ? wrong.message : '', /not found at "\/typo\/lsp"/);
