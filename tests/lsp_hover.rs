@@ -26,6 +26,7 @@ const HOVERS: &[Case] = &[
     Case { config: Some(TURN), file: "dac.mpf", program: "N10 DIAMOF G90 G0 X10 Z5\nN20 X=DA$0C(40)", expected: &["X = **20.000** mm", "The value is read as a diameter; the position is shown as a radius."] },
     Case { config: None, file: "frame.mpf", program: "N10 G90 G0 X0 Z0\nN20 TRANS X10\nN30 X$05", expected: &["X = **5.000** mm (G90: absolute)", "After the programmable frame (machine coordinates): X = **15.000** mm"] },
     Case { config: None, file: "inherited.spf", program: "N10 X=I$0C(5)", expected: &["X = **unknown**"] },
+    Case { config: None, file: "ac_no_brackets.mpf", program: "N10 G90 G0 X0 Y0\nN20 X$0=AC 5", expected: &["X = **unknown**: `AC` needs its value in parentheses, `X=AC(...)` (S101)"] },
     Case { config: None, file: "plane.mpf", program: "N10 G1$07 X0", expected: &["**G17** — Working plane X/Y", "Group 6 (working plane), modal", "Before this block: **G17**"] },
     Case { config: None, file: "dwell.mpf", program: "N10 G$04 F2", expected: &["**G4** — Dwell", "non-modal: acts in this block only"] },
     Case { config: Some(TURN), file: "diamof.mpf", program: "N10 DIAMO$0F", expected: &["Group 29 (diameter / radius programming)", "Before this block: **DIAMON**"] },
@@ -121,6 +122,12 @@ const HINTS: &[HintCase] = &[
         file: "unknown.spf",
         program: "N10 G90 G71 G1 X1 Z=IC(2) F100$0",
         expected: &[(0, "⟶ X1 Z?")],
+    },
+    HintCase {
+        config: None,
+        file: "order.spf",
+        program: "N10 G90 G71 G1 Y40 Z-2 X=IC(2) F100$0",
+        expected: &[(0, "⟶ X? Y40 Z-2")],
     },
 ];
 

@@ -51,7 +51,7 @@ pub fn hover(
     let word = word_at(&line_words, offset);
     let special = word.and_then(|word| match axis_of(word, config) {
         Some(axis) => Some((
-            axis_hover(word, &axis, &line_words, &report, config),
+            axis_hover(word, &axis, &line, &line_words, &report, config),
             Some(word.span.clone()),
         )),
         None => gcode_of(word).map(|code| (gcode_hover(code, &report), Some(word.span.clone()))),
@@ -134,6 +134,7 @@ fn gcode_of(word: &Word<'_>) -> Option<GCode> {
 fn axis_hover(
     word: &Word<'_>,
     axis: &str,
+    line: &str,
     line_words: &[Word<'_>],
     report: &BlockReport,
     config: &MachineConfig,
@@ -146,11 +147,41 @@ fn axis_hover(
         Some(resolution) => resolution.clone(),
         None => resolution_from_movement(word, axis, line_words, report, config),
     };
-    let mut text = explain_resolution(&resolution, &report.after, config);
+    let mut text = match modifier_without_brackets(line, word) {
+        Some(modifier) if resolution.end.is_none() => format!(
+            "{axis} = **unknown**: `{modifier}` needs its value in parentheses, `{axis}={modifier}(...)` (S101); as written, the control reads `{modifier}` as the name of a variable"
+        ),
+        _ => explain_resolution(&resolution, &report.after, config),
+    };
     if report.before.flow_uncertain {
         text.push_str("\n\n⚠ A label, jump or loop comes before this block: the control may run another path than program order, so these values may not be the control's.");
     }
     text
+}
+
+/// The position modifier written without its parentheses in an axis word (`X=AC 5`), which the
+/// control reads as a variable named `AC`: the hover points at the missing parentheses rather than
+/// at an unknown variable.
+fn modifier_without_brackets<'a>(line: &'a str, word: &Word<'_>) -> Option<&'a str> {
+    let text = line.get(word.span.start..)?;
+    let after_equals = &text[text.find('=')? + 1..];
+    if text[..text.find('=')?].trim().len() != word.name.len() {
+        return None;
+    }
+    let after_equals = after_equals.trim_start();
+    let name_length = after_equals
+        .bytes()
+        .take_while(|byte| byte.is_ascii_alphabetic())
+        .count();
+    let name = &after_equals[..name_length];
+    let next = after_equals[name_length..].trim_start().chars().next();
+    let is_modifier = [
+        "AC", "IC", "DC", "ACP", "ACN", "DAC", "DIC", "RAC", "RIC", "CAC", "CIC", "CDC", "CACP",
+        "CACN",
+    ]
+    .iter()
+    .any(|modifier| modifier.eq_ignore_ascii_case(name));
+    (is_modifier && next != Some('(')).then_some(name)
 }
 
 /// How a word resolves, worked out from the block's move when the analysis gave no per-word

@@ -142,7 +142,24 @@ fn end_text(movement: &Move) -> String {
             .filter(|name| !movement.end.iter().any(|(known, _)| known == *name))
             .map(|name| format!("{name}?")),
     );
+    sort_by_axis(&mut parts);
     format!("⟶ {}", parts.join(" "))
+}
+
+/// Orders `Y40`, `Z-2`, `X?` as the configuration orders axes: X, Y, Z first, the others by name, so
+/// that an unknown axis keeps its place instead of trailing behind the known ones.
+fn sort_by_axis(parts: &mut [String]) {
+    parts.sort_by_cached_key(|part| {
+        let name: String = part
+            .chars()
+            .take_while(|character| character.is_ascii_alphabetic() || *character == '_')
+            .collect();
+        let rank = ["X", "Y", "Z"]
+            .iter()
+            .position(|geometry| *geometry == name)
+            .unwrap_or(3);
+        (rank, name)
+    });
 }
 
 /// `⟶ X115 Z60`, with `X?` for an unknown axis and the machine position when a frame moves it.
@@ -160,6 +177,7 @@ pub fn label(movement: &Move, config: &MachineConfig) -> String {
             parts.push(format!("{name}?"));
         }
     }
+    sort_by_axis(&mut parts);
     let mut label = format!("⟶ {}", parts.join(" "));
     if let Some(machine) = &movement.machine {
         if machine_differs(

@@ -328,7 +328,7 @@ impl Engine<'_> {
             if let [only] = written[..] {
                 diagnostics.push(Diagnostic::new(
                     Code::PoleWithOneCoordinate,
-                    super::statements_span(statements).unwrap_or_default(),
+                    statements_span(statements).unwrap_or_default(),
                     format!(
                         "the pole is given by {} alone: whatever the plane, a coordinate of the plane is missing, which is not documented; write both coordinates of the plane",
                         self.config.axes[only].name
