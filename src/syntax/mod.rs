@@ -2,6 +2,7 @@
 //! blocks and diagnostics out.
 
 pub mod ast;
+mod case;
 pub mod context;
 pub mod gcodes;
 pub mod jumps;
