@@ -13,8 +13,6 @@ use crate::syntax::parser::cursor::Parser;
 pub const MAX_EXPRESSION_DEPTH: u32 = 128;
 
 impl Parser<'_> {
-    // ----- expressions --------------------------------------------------------------------------
-
     /// Parses an expression; always returns a node (an `Error` node after reporting a problem).
     pub(super) fn parse_expression(&mut self) -> ExprId {
         self.parse_binary(0)
