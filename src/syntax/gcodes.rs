@@ -462,7 +462,7 @@ impl GCode {
     /// numbered functions (`G90`) are not found here: those are written with the letter G.
     pub fn from_name(name: &str) -> Option<GCode> {
         let mut buffer = [0u8; 32];
-        let upper = crate::syntax::keywords::uppercase(name, &mut buffer)?;
+        let upper = crate::syntax::case::uppercase(name, &mut buffer)?;
         lookup_tables()
             .by_name
             .get(upper)

@@ -3,18 +3,9 @@
 
 use crate::syntax::ast::{JumpKind, NamedAddress, StructureKeyword};
 
-/// Upper-cases a short ASCII name into `buffer`; `None` when the name is longer than the buffer, which
-/// no keyword is.
-pub fn uppercase<'a>(name: &str, buffer: &'a mut [u8; 32]) -> Option<&'a str> {
-    let bytes = name.as_bytes();
-    if bytes.len() > buffer.len() {
-        return None;
-    }
-    for (target, source) in buffer.iter_mut().zip(bytes) {
-        *target = source.to_ascii_uppercase();
-    }
-    std::str::from_utf8(&buffer[..bytes.len()]).ok()
-}
+// Kept here under its old name, where the parser looks up keywords; the function lives in a file of
+// its own so that `gcodes.rs`, which this file's types reach, does not import this file back.
+pub use crate::syntax::case::uppercase;
 
 /// Keywords that start a statement with its own grammar.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -443,14 +434,6 @@ pub fn is_instruction(upper: &str) -> bool {
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn uppercase_short_names_only() {
-        let mut buffer = [0u8; 32];
-        assert_eq!(uppercase("gotof", &mut buffer), Some("GOTOF"));
-        let long = "A".repeat(40);
-        assert_eq!(uppercase(&long, &mut buffer), None);
-    }
 
     #[test]
     fn keywords_are_classified() {

@@ -2,8 +2,12 @@
 //! and the parameters of `PROC`. Broken forms must give the findings they gave before the parser kept
 //! these parts, which the tests spell out.
 
-use super::*;
 use crate::config::MachineConfig;
+use crate::diagnostics::{Code, Diagnostic, Span};
+use crate::syntax::ast::*;
+use crate::syntax::context::SyntaxContext;
+use crate::syntax::parser::expressions::MAX_EXPRESSION_DEPTH;
+use crate::syntax::parser::line_parser::parse_line;
 
 fn parse(line: &str) -> (Block, Vec<Diagnostic>) {
     parse_line(line, &SyntaxContext::new(&MachineConfig::mill()))

@@ -1,14 +1,17 @@
 //! The parts of `DEF` and `PROC` that a program's execution needs: array sizes, initial values, the
 //! parameters of a subprogram with their types, `VAR` and defaults.
 //!
-//! Both statements are first read token by token (in `parser.rs`): that reading finds the declared
+//! Both statements are first read token by token (in `definitions.rs` and `calls.rs`): that reading finds the declared
 //! names and reports what is wrong with the declaration. The reading here comes second, over the same
 //! tokens, and builds the values with the expression parser (so they are nodes of the block's arena,
 //! read with its depth limit). Its findings are dropped: the first reading has already said what is
 //! wrong with the line, and the expression parser would say some of it again in other words. It only
 //! ever moves forward from where the first reading found a name, so a line costs linear time.
 
-use super::*;
+use crate::diagnostics::Span;
+use crate::syntax::ast::{DataType, Declarator, Initializer, ProcParameter};
+use crate::syntax::lexer::Token;
+use crate::syntax::parser::cursor::Parser;
 
 /// What the second reading must give back to the parser: its findings so far and the flags that keep a
 /// finding from being reported twice.

@@ -2,8 +2,12 @@
 //! `CASE` for running a program. Broken forms must give the findings they gave before the parser kept
 //! these parts, which the tests spell out.
 
-use super::*;
 use crate::config::MachineConfig;
+use crate::diagnostics::{Code, Diagnostic, Span};
+use crate::syntax::ast::*;
+use crate::syntax::context::SyntaxContext;
+use crate::syntax::parser::findings::MAX_DIAGNOSTICS_PER_LINE;
+use crate::syntax::parser::line_parser::parse_line;
 
 fn parse(line: &str) -> (Block, Vec<Diagnostic>) {
     parse_line(line, &SyntaxContext::new(&MachineConfig::mill()))
@@ -391,4 +395,29 @@ fn hostile_repetitions_and_case_blocks_stay_bounded() {
         assert!(diagnostics.len() <= MAX_DIAGNOSTICS_PER_LINE);
         assert!(!block.statements.is_empty());
     }
+}
+
+#[test]
+fn a_conditional_jump_keeps_its_condition() {
+    let line = "IF R1<3 GOTOB LOOP1";
+    let (block, diagnostics) = parse_line(line, &SyntaxContext::default());
+    assert!(diagnostics.is_empty(), "{diagnostics:?}");
+    let [Statement::Jump {
+        kind: JumpKind::Gotob,
+        condition: Some(condition),
+        ..
+    }] = block.statements.as_slice()
+    else {
+        panic!("expected one conditional jump, got {:?}", block.statements);
+    };
+    let span = block.expr(*condition).span;
+    assert_eq!(&line[span.start()..span.end()], "R1<3");
+    let (block, _) = parse_line("GOTOF END", &SyntaxContext::default());
+    assert!(matches!(
+        block.statements.as_slice(),
+        [Statement::Jump {
+            condition: None,
+            ..
+        }]
+    ));
 }

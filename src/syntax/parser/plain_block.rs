@@ -7,7 +7,13 @@
 //! shapes and gives up (returns `false`) at the first byte that could mean anything else; the caller then
 //! parses the line the general way. `tests/plain_block_equivalence.rs` compares both paths.
 
-use super::*;
+use crate::diagnostics::Span;
+use crate::syntax::ast::{AddressKind, AddressWord, BlockNumber, Statement, Value, ValueExpr};
+use crate::syntax::gcodes::GCode;
+use crate::syntax::parser::cursor::Parser;
+use crate::syntax::parser::literals::{
+    decimal_from_parts, parse_number, MAX_SIMPLE_DECIMAL_LENGTH,
+};
 
 fn is_blank(byte: u8) -> bool {
     byte == b' ' || byte == b'\t'

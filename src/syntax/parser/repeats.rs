@@ -1,24 +1,13 @@
 //! Section repetition: `REPEAT LABEL1 [LABEL2|ENDLABEL] [P=n]` and `REPEATB LABEL [P=n]` (reference
 //! §8.4, §17.7), with their labels and repetition count.
 //!
-//! The block checks (G groups, instructions that stand alone, addresses written twice) were written
-//! when such a statement was an instruction made of the keyword and its labels, followed by the
-//! count as an address word `P`, and when the value of each CASE branch was not a statement. Their
-//! findings quote those statements, so the checks still read a block that way:
-//! [`Parser::statements_as_checked`] gives them the statements as they were.
+//! Each repetition also leaves a record of what the block checks read of it (see `checked_view.rs`).
 
-use super::*;
-
-/// What the block checks read of one REPEAT or REPEATB statement.
-pub(super) struct RepeatWords {
-    /// The index of the statement in the block.
-    index: usize,
-    keyword: Span,
-    /// From the keyword to its last label.
-    keyword_and_labels: Span,
-    /// The `P` word taken as the count.
-    count_word: Option<AddressWord>,
-}
+use crate::diagnostics::Span;
+use crate::syntax::ast::{ExprId, ExprKind, Statement, ValueExpr};
+use crate::syntax::lexer::Token;
+use crate::syntax::parser::checked_view::RepeatWords;
+use crate::syntax::parser::cursor::Parser;
 
 impl Parser<'_> {
     /// `REPEAT` followed by a name: the labels, then the count. Every name that follows is read as a
@@ -119,44 +108,5 @@ impl Parser<'_> {
             count_word,
         });
         (count, span)
-    }
-
-    /// The statements of the block as the block checks read them (see the module documentation),
-    /// and how many of them the interpreter runs (those before a synchronized action's actions).
-    pub(super) fn statements_as_checked(
-        &self,
-        statements: &[Statement],
-        interpreted_count: usize,
-    ) -> (Vec<Statement>, usize) {
-        let mut checked = Vec::with_capacity(statements.len() + self.repeats.len());
-        let mut checked_interpreted = None;
-        let mut repeats = self.repeats.iter().peekable();
-        for (index, statement) in statements.iter().enumerate() {
-            if index == interpreted_count {
-                checked_interpreted = Some(checked.len());
-            }
-            match statement {
-                Statement::CaseBranch { .. } => {}
-                Statement::SectionRepeat { .. } | Statement::BlockRepeat { .. } => {
-                    while repeats.next_if(|words| words.index < index).is_some() {}
-                    match repeats.next_if(|words| words.index == index) {
-                        Some(words) => {
-                            checked.push(Statement::Instruction {
-                                name: words.keyword,
-                                args: Vec::new(),
-                                span: words.keyword_and_labels,
-                            });
-                            if let Some(word) = &words.count_word {
-                                checked.push(Statement::Address(word.clone()));
-                            }
-                        }
-                        None => checked.push(statement.clone()),
-                    }
-                }
-                _ => checked.push(statement.clone()),
-            }
-        }
-        let checked_interpreted = checked_interpreted.unwrap_or(checked.len());
-        (checked, checked_interpreted)
     }
 }
