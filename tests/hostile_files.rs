@@ -35,9 +35,14 @@ struct Run {
 struct TempFile(PathBuf);
 
 impl TempFile {
+    /// Each file gets a folder of its own: `check` also reads the program files beside the one it
+    /// checks (callees, definition files), and the other tests' large files in a shared folder would
+    /// then count toward this file's memory bound.
     fn new(name: &str, bytes: &[u8]) -> TempFile {
-        let path =
+        let folder =
             std::env::temp_dir().join(format!("sinumerik-hostile-{}-{name}", std::process::id()));
+        std::fs::create_dir_all(&folder).expect("the temporary folder can be made");
+        let path = folder.join(name);
         std::fs::write(&path, bytes).expect("the temporary file can be written");
         TempFile(path)
     }
@@ -45,7 +50,9 @@ impl TempFile {
 
 impl Drop for TempFile {
     fn drop(&mut self) {
-        let _ = std::fs::remove_file(&self.0);
+        if let Some(folder) = self.0.parent() {
+            let _ = std::fs::remove_dir_all(folder);
+        }
     }
 }
 
