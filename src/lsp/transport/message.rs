@@ -56,6 +56,10 @@ struct RequestShape<'a> {
 
 /// Reads one body.
 pub fn read_message(body: &[u8], gate: &mut InitializeGate) -> Incoming {
+    // The parser does not check the bytes of what it skips (unknown fields); JSON is UTF-8 throughout.
+    if std::str::from_utf8(body).is_err() {
+        return invalid(Id::Null, Problem::NotJson, body.len());
+    }
     let problem = match serde_json::from_slice::<Request>(body) {
         Ok(request)
             if !request.method().is_empty()
