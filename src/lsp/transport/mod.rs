@@ -14,7 +14,7 @@
 
 pub mod framing;
 mod framing_reader;
-mod message;
+pub mod message;
 pub mod outbox;
 // The crate's only `unsafe` code: the process settings made through the C library.
 #[allow(unsafe_code)]
