@@ -20,7 +20,7 @@ use crate::lsp::publish::{self, Publisher};
 use crate::lsp::text_document::{
     apply_changes, core_line_count, ChangeError, DocumentText, RopeLineChange, RopeLines,
 };
-use crate::lsp::transport::outbox::{Outgoing, OutgoingSender};
+use crate::lsp::transport::outbox::{Outgoing, OutgoingSender, Part};
 use ropey::Rope;
 use std::collections::HashMap;
 use std::path::PathBuf;
@@ -266,7 +266,7 @@ impl OpenDocument {
         encoding: PositionEncoding,
         limit: Option<usize>,
         extra: &[LineDiagnostic],
-    ) -> Vec<u8> {
+    ) -> Vec<Part> {
         let (diagnostics, left_out) = within_limit(analysed.analysis.diagnostics(), limit);
         let all_ascii = analysed.rope.len_bytes() == analysed.rope.len_chars();
         let lines = analysed.lines();
@@ -293,8 +293,8 @@ impl OpenDocument {
         let Some((_, publisher)) = published.as_mut() else {
             return Vec::new();
         };
-        let items = publisher.encode(&diagnostics, ranges);
-        publish::publication(&self.uri, Some(analysed.version), items, &more)
+        let items = publisher.encode_shared(&diagnostics, ranges);
+        publish::publication_parts(&self.uri, Some(analysed.version), items, &more)
     }
 
     /// The current revision; a request remembers it to know whether its answer is still current.
@@ -528,7 +528,7 @@ impl OpenDocument {
                         && lock(&self.extra).generation() == extra_generation
                     {
                         // Sent under the lock: a newer revision's publication cannot overtake it.
-                        context.outgoing.send_body(message);
+                        context.outgoing.send_parts(message);
                         text.worker_running = false;
                         return;
                     }

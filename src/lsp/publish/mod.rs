@@ -16,7 +16,9 @@ pub mod wire;
 
 use crate::diagnostics::LineDiagnostic;
 use crate::lsp::convert::{span_to_range, PositionEncoding};
+use crate::lsp::transport::outbox::Part;
 use std::borrow::Cow;
+use std::sync::Arc;
 use tower_lsp_server::ls_types::{Position, Range, Uri};
 use wire::WireDiagnostic;
 
@@ -61,17 +63,31 @@ pub fn ranges<'a>(
 pub struct Publisher {
     items: Vec<LineDiagnostic>,
     ranges: Vec<Range>,
-    /// The objects, each followed by a comma.
-    json: Vec<u8>,
+    /// The objects, each followed by a comma; shared with the message being written.
+    json: Arc<Vec<u8>>,
     /// Where each object's text (with its comma) ends in `json`.
     ends: Vec<usize>,
+    /// The buffer of the publication before the last, once the writer is done with it: its pages
+    /// are mapped already.
+    spare: Vec<u8>,
 }
 
 impl Publisher {
-    /// The encoded array items of `diagnostics` at `ranges` (the same length), taken over from the
-    /// last publication where the findings at the start and at the end are the same; this becomes
-    /// the last publication.
+    /// The encoded array items (joined by commas) of `diagnostics` at `ranges` (the same length),
+    /// taken over from the last publication where the findings at the start and at the end are the
+    /// same; this becomes the last publication.
     pub fn encode(&mut self, diagnostics: &[LineDiagnostic], ranges: Vec<Range>) -> &[u8] {
+        let (_, length) = self.encode_shared(diagnostics, ranges);
+        &self.json[..length]
+    }
+
+    /// Like [`Publisher::encode`]: the items are the first `length` bytes (the objects joined by
+    /// commas) of the buffer returned.
+    pub fn encode_shared(
+        &mut self,
+        diagnostics: &[LineDiagnostic],
+        ranges: Vec<Range>,
+    ) -> (Arc<Vec<u8>>, usize) {
         let same = |old: usize, new: usize| {
             self.ranges[old] == ranges[new] && self.items[old] == diagnostics[new]
         };
@@ -87,7 +103,8 @@ impl Publisher {
             .count();
         let object_start =
             |ends: &[usize], index: usize| if index == 0 { 0 } else { ends[index - 1] };
-        let mut json = Vec::with_capacity(self.json.len().max(diagnostics.len() * 160));
+        let mut json = std::mem::take(&mut self.spare);
+        json.clear();
         let mut ends = Vec::with_capacity(diagnostics.len());
         json.extend_from_slice(&self.json[..object_start(&self.ends, prefix)]);
         ends.extend_from_slice(&self.ends[..prefix]);
@@ -107,12 +124,35 @@ impl Publisher {
                 .iter()
                 .map(|&end| (end as isize + shift) as usize),
         );
-        self.items = diagnostics.to_vec();
+        // Only the findings between the unchanged ends are copied.
+        let old_middle = prefix..self.items.len() - suffix;
+        self.items.splice(
+            old_middle,
+            diagnostics[prefix..diagnostics.len() - suffix]
+                .iter()
+                .cloned(),
+        );
         self.ranges = ranges;
-        self.json = json;
+        let last = std::mem::replace(&mut self.json, Arc::new(json));
+        // The buffer is used again if the writer is done with it (a publication is written before
+        // the next edit's comes, as a rule); otherwise the writer frees it.
+        if let Ok(buffer) = Arc::try_unwrap(last) {
+            self.spare = buffer;
+        }
         self.ends = ends;
-        &self.json
+        let length = self.json.len().saturating_sub(1);
+        (Arc::clone(&self.json), length)
     }
+}
+
+fn encoded(more: &[WireDiagnostic<'_>]) -> Vec<Vec<u8>> {
+    more.iter()
+        .map(|item| {
+            let mut out = Vec::new();
+            item.write(&mut out);
+            out
+        })
+        .collect()
 }
 
 /// The `publishDiagnostics` body of `items` (from [`Publisher::encode`]) followed by more
@@ -123,15 +163,22 @@ pub fn publication(
     items: &[u8],
     more: &[WireDiagnostic<'_>],
 ) -> Vec<u8> {
-    let more: Vec<Vec<u8>> = more
-        .iter()
-        .map(|item| {
-            let mut out = Vec::new();
-            item.write(&mut out);
-            out
-        })
-        .collect();
-    wire::publication(uri, version, items, &more)
+    wire::publication(uri, version, items, &encoded(more))
+}
+
+/// The same body in parts, the items shared with the publisher (`items` and `length` from
+/// [`Publisher::encode_shared`]).
+pub fn publication_parts(
+    uri: &Uri,
+    version: Option<i32>,
+    (items, length): (Arc<Vec<u8>>, usize),
+    more: &[WireDiagnostic<'_>],
+) -> Vec<Part> {
+    vec![
+        Part::Owned(wire::head(uri, version)),
+        Part::Shared(items, length),
+        Part::Owned(wire::tail(length > 0, &encoded(more))),
+    ]
 }
 
 #[cfg(test)]

@@ -44,28 +44,39 @@ impl<'a> WireDiagnostic<'a> {
     }
 }
 
-/// The body of a `publishDiagnostics` message whose diagnostics array holds the objects `items`
-/// (each followed by a comma, the last one's included) and then `more`, each a whole object.
-pub fn publication(uri: &Uri, version: Option<i32>, items: &[u8], more: &[Vec<u8>]) -> Vec<u8> {
-    let more_length: usize = more.iter().map(|item| item.len() + 1).sum();
-    let mut body = Vec::with_capacity(items.len() + more_length + uri.as_str().len() + 128);
-    body.extend_from_slice(
+/// What comes before the diagnostics array's items in a `publishDiagnostics` body.
+pub fn head(uri: &Uri, version: Option<i32>) -> Vec<u8> {
+    let mut head = Vec::with_capacity(uri.as_str().len() + 128);
+    head.extend_from_slice(
         br#"{"jsonrpc":"2.0","method":"textDocument/publishDiagnostics","params":{"uri":"#,
     );
-    let _ = serde_json::to_writer(&mut body, uri.as_str());
+    let _ = serde_json::to_writer(&mut head, uri.as_str());
     if let Some(version) = version {
-        body.extend_from_slice(format!(r#","version":{version}"#).as_bytes());
+        head.extend_from_slice(format!(r#","version":{version}"#).as_bytes());
     }
-    body.extend_from_slice(br#","diagnostics":["#);
+    head.extend_from_slice(br#","diagnostics":["#);
+    head
+}
+
+/// What comes after the array's first items (`items_before` says whether there are any): the
+/// objects `more`, each a whole object, and the end of the message.
+pub fn tail(items_before: bool, more: &[Vec<u8>]) -> Vec<u8> {
+    let mut tail = Vec::with_capacity(more.iter().map(|item| item.len() + 1).sum::<usize>() + 3);
+    for (index, item) in more.iter().enumerate() {
+        if items_before || index > 0 {
+            tail.push(b',');
+        }
+        tail.extend_from_slice(item);
+    }
+    tail.extend_from_slice(b"]}}");
+    tail
+}
+
+/// The whole body of a `publishDiagnostics` message whose array holds the objects `items` (joined
+/// by commas) and then `more`.
+pub fn publication(uri: &Uri, version: Option<i32>, items: &[u8], more: &[Vec<u8>]) -> Vec<u8> {
+    let mut body = head(uri, version);
     body.extend_from_slice(items);
-    for item in more {
-        body.extend_from_slice(item);
-        body.push(b',');
-    }
-    // The comma after the last object goes.
-    if body.last() == Some(&b',') {
-        body.pop();
-    }
-    body.extend_from_slice(b"]}}");
+    body.extend_from_slice(&tail(!items.is_empty(), more));
     body
 }

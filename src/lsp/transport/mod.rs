@@ -63,6 +63,18 @@ pub async fn serve<I, O, S>(
     O: AsyncWrite + Unpin + Send + 'static,
     S: tower_lsp_server::LanguageServer,
 {
+    serve_on(input, outbox::Output::Stream(output), build).await;
+}
+
+async fn serve_on<I, O, S>(
+    input: I,
+    output: outbox::Output<O>,
+    build: impl FnOnce(OutgoingSender) -> (LspService<S>, ClientSocket),
+) where
+    I: AsyncRead + Unpin + Send + 'static,
+    O: AsyncWrite + Unpin + Send + 'static,
+    S: tower_lsp_server::LanguageServer,
+{
     let (outgoing, writer) = outbox::start(output);
     let (service, socket) = build(outgoing.clone());
     run(input, service, socket, outgoing).await;
@@ -156,7 +168,11 @@ where
         }
     };
     sys::enlarge_stdio_buffers();
-    runtime.block_on(serve(tokio::io::stdin(), tokio::io::stdout(), build));
+    runtime.block_on(serve_on(
+        tokio::io::stdin(),
+        outbox::Output::<tokio::io::Stdout>::Blocking(Box::new(std::io::stdout())),
+        build,
+    ));
     // Analyses still running in the blocking pool are not waited for: the client has gone.
     runtime.shutdown_timeout(std::time::Duration::from_millis(100));
     true

@@ -1,16 +1,21 @@
 //! The one writer: every message the server sends (responses, its requests to the client, its own
-//! notifications) is encoded by [`encode`] where it is made and queued here as a body; one task
+//! notifications) is encoded by [`encode`] where it is made and queued here as a body; one writer
 //! writes the bodies in queue order, each behind its header. Diagnostics are encoded by
-//! `publish/` straight from the analysis's values; the framework's `Client` would first build a JSON
-//! value tree of them.
+//! `publish/` straight from the analysis's values (the framework's `Client` would first build a JSON
+//! value tree of them), and their body comes in parts: the array's items are shared with the
+//! document's `Publisher`, which takes them over for the next publication, so megabytes of items are
+//! neither copied into a message nor written into fresh pages on every keystroke. On the process's
+//! stdout the writer is a thread of its own with blocking writes (tokio's stdout copies every write
+//! into its own buffer and hands it to the blocking pool, 2 MiB at a time); in-process (tests) it is a
+//! task.
 
 use crate::lsp::log;
 use crate::lsp::transport::framing;
 use serde::Serialize;
+use std::sync::Arc;
 use std::time::Duration;
 use tokio::io::{AsyncWrite, AsyncWriteExt};
 use tokio::sync::mpsc;
-use tokio::task::JoinHandle;
 use tower_lsp_server::ls_types::{
     Diagnostic, LogMessageParams, MessageType, PublishDiagnosticsParams, Uri,
 };
@@ -28,8 +33,24 @@ pub enum Outgoing {
     },
 }
 
+/// A piece of a message's body.
+pub enum Part {
+    Owned(Vec<u8>),
+    /// The first `length` bytes of a buffer shared with the sender.
+    Shared(Arc<Vec<u8>>, usize),
+}
+
+impl Part {
+    fn bytes(&self) -> &[u8] {
+        match self {
+            Part::Owned(bytes) => bytes,
+            Part::Shared(bytes, length) => &bytes[..*length],
+        }
+    }
+}
+
 enum Queued {
-    Body(Vec<u8>),
+    Body(Vec<Part>),
     /// Everything before this has been queued: flush and stop.
     End,
 }
@@ -95,9 +116,14 @@ impl OutgoingSender {
         }
     }
 
-    /// Queues a body that is already encoded (a publication of diagnostics).
+    /// Queues a body that is already encoded.
     pub fn send_body(&self, body: Vec<u8>) {
-        let _ = self.0.send(Queued::Body(body));
+        let _ = self.0.send(Queued::Body(vec![Part::Owned(body)]));
+    }
+
+    /// Queues a body in parts (a publication of diagnostics).
+    pub fn send_parts(&self, parts: Vec<Part>) {
+        let _ = self.0.send(Queued::Body(parts));
     }
 
     /// Logs on stderr and as `window/logMessage`.
@@ -115,52 +141,115 @@ impl OutgoingSender {
     }
 }
 
-/// The task that writes; [`Writer::finish`] waits until everything queued is out.
+/// Where the messages go.
+pub enum Output<O> {
+    /// A stream written by a task of the runtime (in-process use, the tests).
+    Stream(O),
+    /// A blocking writer with a thread of its own (the process's stdout).
+    Blocking(Box<dyn std::io::Write + Send>),
+}
+
+/// The writer; [`Writer::finish`] waits until everything queued is out.
 pub struct Writer {
     sender: OutgoingSender,
-    task: JoinHandle<()>,
+    done: tokio::sync::oneshot::Receiver<()>,
 }
 
 impl Writer {
     pub async fn finish(self) {
         let _ = self.sender.0.send(Queued::End);
-        let _ = tokio::time::timeout(Duration::from_secs(5), self.task).await;
+        let _ = tokio::time::timeout(Duration::from_secs(5), self.done).await;
     }
 }
 
 /// Starts writing to `output`.
-pub fn start<O>(mut output: O) -> (OutgoingSender, Writer)
+pub fn start<O>(output: Output<O>) -> (OutgoingSender, Writer)
 where
     O: AsyncWrite + Unpin + Send + 'static,
 {
-    let (sender, mut receiver) = mpsc::unbounded_channel();
-    let task = tokio::spawn(async move {
-        while let Some(queued) = receiver.recv().await {
-            let Queued::Body(body) = queued else {
-                let _ = output.flush().await;
-                return;
-            };
-            let started = std::time::Instant::now();
-            let written = async {
-                output.write_all(&framing::header(body.len())).await?;
-                output.write_all(&body).await?;
-                // Flushed when nothing else is waiting: a burst of messages goes out together.
-                if receiver.is_empty() {
-                    output.flush().await?;
-                }
-                std::io::Result::Ok(())
-            }
-            .await;
-            log::slow_with(
-                || format!("writing a message of {} bytes", body.len()),
-                started.elapsed(),
-            );
-            // The client has gone: nothing more can be written.
-            if written.is_err() {
-                return;
+    let (sender, receiver) = mpsc::unbounded_channel();
+    let (done_sender, done) = tokio::sync::oneshot::channel();
+    match output {
+        Output::Stream(output) => {
+            tokio::spawn(async move {
+                write_stream(output, receiver).await;
+                let _ = done_sender.send(());
+            });
+        }
+        Output::Blocking(output) => {
+            let spawned = std::thread::Builder::new()
+                .name("lsp-output".into())
+                .spawn(move || {
+                    write_blocking(output, receiver);
+                    let _ = done_sender.send(());
+                });
+            if let Err(error) = spawned {
+                log::to_stderr(
+                    MessageType::ERROR,
+                    &format!("cannot start the output thread: {error}"),
+                );
             }
         }
-    });
+    }
     let sender = OutgoingSender(sender);
-    (sender.clone(), Writer { sender, task })
+    (sender.clone(), Writer { sender, done })
+}
+
+fn body_length(parts: &[Part]) -> usize {
+    parts.iter().map(|part| part.bytes().len()).sum()
+}
+
+async fn write_stream<O: AsyncWrite + Unpin>(
+    mut output: O,
+    mut receiver: mpsc::UnboundedReceiver<Queued>,
+) {
+    while let Some(Queued::Body(parts)) = receiver.recv().await {
+        let written = async {
+            output
+                .write_all(&framing::header(body_length(&parts)))
+                .await?;
+            for part in &parts {
+                output.write_all(part.bytes()).await?;
+            }
+            // Flushed when nothing else is waiting: a burst of messages goes out together.
+            if receiver.is_empty() {
+                output.flush().await?;
+            }
+            std::io::Result::Ok(())
+        }
+        .await;
+        // The client has gone: nothing more can be written.
+        if written.is_err() {
+            return;
+        }
+    }
+    let _ = output.flush().await;
+}
+
+fn write_blocking(
+    mut output: Box<dyn std::io::Write + Send>,
+    mut receiver: mpsc::UnboundedReceiver<Queued>,
+) {
+    while let Some(Queued::Body(parts)) = receiver.blocking_recv() {
+        let started = std::time::Instant::now();
+        let length = body_length(&parts);
+        let written = (|| {
+            output.write_all(&framing::header(length))?;
+            for part in &parts {
+                output.write_all(part.bytes())?;
+            }
+            if receiver.is_empty() {
+                output.flush()?;
+            }
+            std::io::Result::Ok(())
+        })();
+        log::slow_with(
+            || format!("writing a message of {length} bytes"),
+            started.elapsed(),
+        );
+        if written.is_err() {
+            return;
+        }
+    }
+    let _ = output.flush();
 }
