@@ -226,7 +226,7 @@ pub struct TextSnapshot {
 pub struct WorkerContext {
     pub outgoing: OutgoingSender,
     pub encoding: PositionEncoding,
-    /// The `maxDiagnostics` setting (`diagnostics_limit.rs`).
+    /// The `maxDiagnostics` setting (`publish/limit.rs`).
     pub max_diagnostics: Option<usize>,
 }
 
