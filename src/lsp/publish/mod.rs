@@ -7,9 +7,10 @@
 //!
 //! A large program may have tens of thousands of findings, published again after every keystroke,
 //! and a keystroke changes few of them. The [`Publisher`] of a document keeps the last array's
-//! encoded items with the findings they came from; the next publication takes over the unchanged
-//! items at the start and at the end (compared as values, with their ranges) and encodes only those
-//! between. That is the only state; the analysis knows nothing of it.
+//! encoded items, in chunks of 256, with the findings they came from; the next publication takes
+//! over the chunks of unchanged items at the start and at the end (compared as values, with their
+//! ranges) without a copy, shared with the writer, and encodes only the chunks between. That is the
+//! only state; the analysis knows nothing of it.
 
 pub mod limit;
 pub mod wire;
@@ -58,36 +59,44 @@ pub fn ranges<'a>(
         .collect()
 }
 
+/// Objects per chunk of the encoded array: an edit encodes the chunks it touches again.
+const CHUNK_ITEMS: usize = 256;
+
+/// Encoded objects, each followed by a comma; shared with the messages being written.
+#[derive(Clone)]
+struct Chunk {
+    bytes: Arc<Vec<u8>>,
+    items: usize,
+}
+
 /// The findings of a document's last publication, with their ranges and encoded objects.
 #[derive(Default)]
 pub struct Publisher {
     items: Vec<LineDiagnostic>,
     ranges: Vec<Range>,
-    /// The objects, each followed by a comma; shared with the message being written.
-    json: Arc<Vec<u8>>,
-    /// Where each object's text (with its comma) ends in `json`.
-    ends: Vec<usize>,
-    /// The buffer of the publication before the last, once the writer is done with it: its pages
-    /// are mapped already.
-    spare: Vec<u8>,
+    chunks: Vec<Chunk>,
 }
 
 impl Publisher {
     /// The encoded array items (joined by commas) of `diagnostics` at `ranges` (the same length),
     /// taken over from the last publication where the findings at the start and at the end are the
     /// same; this becomes the last publication.
-    pub fn encode(&mut self, diagnostics: &[LineDiagnostic], ranges: Vec<Range>) -> &[u8] {
-        let (_, length) = self.encode_shared(diagnostics, ranges);
-        &self.json[..length]
+    pub fn encode(&mut self, diagnostics: &[LineDiagnostic], ranges: Vec<Range>) -> Vec<u8> {
+        let mut items = Vec::new();
+        for (bytes, length) in self.encode_shared(diagnostics, ranges) {
+            items.extend_from_slice(&bytes[..length]);
+        }
+        items
     }
 
-    /// Like [`Publisher::encode`]: the items are the first `length` bytes (the objects joined by
-    /// commas) of the buffer returned.
+    /// Like [`Publisher::encode`], as pieces shared with the publisher (each the first `length`
+    /// bytes of a buffer; together the objects joined by commas). Only the chunks of objects that
+    /// hold a finding that changed are encoded again; the others are taken over without a copy.
     pub fn encode_shared(
         &mut self,
         diagnostics: &[LineDiagnostic],
         ranges: Vec<Range>,
-    ) -> (Arc<Vec<u8>>, usize) {
+    ) -> Vec<(Arc<Vec<u8>>, usize)> {
         let same = |old: usize, new: usize| {
             self.ranges[old] == ranges[new] && self.items[old] == diagnostics[new]
         };
@@ -101,29 +110,40 @@ impl Publisher {
         let suffix = (0..most - prefix)
             .take_while(|&back| same(self.items.len() - 1 - back, diagnostics.len() - 1 - back))
             .count();
-        let object_start =
-            |ends: &[usize], index: usize| if index == 0 { 0 } else { ends[index - 1] };
-        let mut json = std::mem::take(&mut self.spare);
-        json.clear();
-        let mut ends = Vec::with_capacity(diagnostics.len());
-        json.extend_from_slice(&self.json[..object_start(&self.ends, prefix)]);
-        ends.extend_from_slice(&self.ends[..prefix]);
-        for (item, range) in diagnostics[prefix..diagnostics.len() - suffix]
-            .iter()
-            .zip(&ranges[prefix..])
-        {
-            WireDiagnostic::of(item, *range).write(&mut json);
-            json.push(b',');
-            ends.push(json.len());
+        // The chunks wholly inside the unchanged ends are kept.
+        let (mut front_chunks, mut front_items) = (0, 0);
+        for chunk in &self.chunks {
+            if front_items + chunk.items > prefix {
+                break;
+            }
+            front_chunks += 1;
+            front_items += chunk.items;
         }
-        let old_suffix_start = object_start(&self.ends, self.items.len() - suffix);
-        let shift = json.len() as isize - old_suffix_start as isize;
-        json.extend_from_slice(&self.json[old_suffix_start..]);
-        ends.extend(
-            self.ends[self.items.len() - suffix..]
-                .iter()
-                .map(|&end| (end as isize + shift) as usize),
-        );
+        let (mut back_chunks, mut back_items) = (0, 0);
+        for chunk in self.chunks[front_chunks..].iter().rev() {
+            if back_items + chunk.items > suffix {
+                break;
+            }
+            back_chunks += 1;
+            back_items += chunk.items;
+        }
+        let mut chunks: Vec<Chunk> = self.chunks[..front_chunks].to_vec();
+        let middle = front_items..diagnostics.len() - back_items;
+        for (items, ranges) in diagnostics[middle.clone()]
+            .chunks(CHUNK_ITEMS)
+            .zip(ranges[middle].chunks(CHUNK_ITEMS))
+        {
+            let mut bytes = Vec::with_capacity(items.len() * 200);
+            for (item, range) in items.iter().zip(ranges) {
+                WireDiagnostic::of(item, *range).write(&mut bytes);
+                bytes.push(b',');
+            }
+            chunks.push(Chunk {
+                bytes: Arc::new(bytes),
+                items: items.len(),
+            });
+        }
+        chunks.extend_from_slice(&self.chunks[self.chunks.len() - back_chunks..]);
         // Only the findings between the unchanged ends are copied.
         let old_middle = prefix..self.items.len() - suffix;
         self.items.splice(
@@ -133,15 +153,17 @@ impl Publisher {
                 .cloned(),
         );
         self.ranges = ranges;
-        let last = std::mem::replace(&mut self.json, Arc::new(json));
-        // The buffer is used again if the writer is done with it (a publication is written before
-        // the next edit's comes, as a rule); otherwise the writer frees it.
-        if let Ok(buffer) = Arc::try_unwrap(last) {
-            self.spare = buffer;
-        }
-        self.ends = ends;
-        let length = self.json.len().saturating_sub(1);
-        (Arc::clone(&self.json), length)
+        self.chunks = chunks;
+        let count = self.chunks.len();
+        self.chunks
+            .iter()
+            .enumerate()
+            .map(|(index, chunk)| {
+                // The comma after the last object goes.
+                let length = chunk.bytes.len() - usize::from(index + 1 == count);
+                (Arc::clone(&chunk.bytes), length)
+            })
+            .collect()
     }
 }
 
@@ -166,19 +188,26 @@ pub fn publication(
     wire::publication(uri, version, items, &encoded(more))
 }
 
-/// The same body in parts, the items shared with the publisher (`items` and `length` from
+/// The same body in parts, the items shared with the publisher (from
 /// [`Publisher::encode_shared`]).
 pub fn publication_parts(
     uri: &Uri,
     version: Option<i32>,
-    (items, length): (Arc<Vec<u8>>, usize),
+    items: Vec<(Arc<Vec<u8>>, usize)>,
     more: &[WireDiagnostic<'_>],
 ) -> Vec<Part> {
-    vec![
-        Part::Owned(wire::head(uri, version)),
-        Part::Shared(items, length),
-        Part::Owned(wire::tail(length > 0, &encoded(more))),
-    ]
+    let any_items = items.iter().any(|(_, length)| *length > 0);
+    std::iter::once(Part::Owned(wire::head(uri, version)))
+        .chain(
+            items
+                .into_iter()
+                .map(|(bytes, length)| Part::Shared(bytes, length)),
+        )
+        .chain(std::iter::once(Part::Owned(wire::tail(
+            any_items,
+            &encoded(more),
+        ))))
+        .collect()
 }
 
 #[cfg(test)]

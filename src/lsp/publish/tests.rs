@@ -144,3 +144,51 @@ fn more_diagnostics_follow_the_items_and_no_version_is_written_without_one() {
     assert_eq!(value["params"].get("version"), None);
     let _ = ls_types::Diagnostic::default();
 }
+
+#[test]
+fn chunks_around_a_change_are_written_again_and_the_rest_taken_over() {
+    let lines: Vec<String> = (0..2000).map(|line| format!("N{line} X1")).collect();
+    let lines: Vec<&str> = lines.iter().map(String::as_str).collect();
+    let all: Vec<LineDiagnostic> = (0..2000)
+        .map(|line| finding(line, 1, &format!("m{line}")))
+        .collect();
+    let ranges_of = |items: &[LineDiagnostic]| {
+        ranges(
+            items,
+            |line| Cow::Borrowed(lines[line]),
+            true,
+            PositionEncoding::Utf16,
+        )
+    };
+    let mut publisher = Publisher::default();
+    let mut items = all.clone();
+    // Changes at a chunk's start, inside one, at the end; findings removed and added.
+    for (step, at) in [0usize, 255, 256, 700, 1999, 1000, 3, 1500]
+        .into_iter()
+        .enumerate()
+    {
+        let at = at.min(items.len() - 1);
+        match step % 3 {
+            0 => items[at].diagnostic.message.push('!'),
+            1 => {
+                items.remove(at);
+            }
+            _ => items.insert(at, finding(at, 0, "new")),
+        }
+        let shared = publisher.encode_shared(&items, ranges_of(&items));
+        let mut fresh = Publisher::default();
+        assert_eq!(
+            shared
+                .iter()
+                .flat_map(|(bytes, length)| bytes[..*length].iter().copied())
+                .collect::<Vec<u8>>(),
+            fresh.encode(&items, ranges_of(&items)),
+            "step {step}"
+        );
+        assert!(
+            shared.len() <= items.len() / 64 + 8,
+            "{} pieces",
+            shared.len()
+        );
+    }
+}
