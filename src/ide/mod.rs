@@ -17,6 +17,7 @@
 //! - `renumber.rs`, `format.rs`: whole-document rewrites returned as text.
 
 pub mod block_numbers;
+mod comment_sections;
 pub mod completion;
 pub mod cross_file_diagnostics;
 pub mod cycles;
@@ -30,6 +31,8 @@ pub mod outline;
 pub mod renumber;
 pub mod semantic_tokens;
 pub mod signature_help;
+mod statement_text;
+pub mod symbol_types;
 pub mod symbols;
 pub mod timing;
 pub mod workspace;
