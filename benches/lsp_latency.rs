@@ -1,10 +1,11 @@
 //! Latency of the language server as an editor sees it: the release binary driven over stdio with
-//! 1,000,000-line programs from `../shared/bench/gen_program.py` (`cam3d` and `inc`).
+//! 1,000,000-line programs from `../shared/bench/gen_program.py` (`cam3d`, `inc` and `noisy`).
 //!
 //! Prints, per program: didOpen to the first publishDiagnostics (timed from when the message starts
 //! to go out, after the client's own JSON encoding); a one-character edit on a random line to the
 //! publishDiagnostics of that version (median and p99) — a space at the start of a line of `cam3d`
-//! (meaning unchanged) and a changed coordinate digit in `inc` (every later position moves); hover
+//! and `noisy` (meaning unchanged) and a changed coordinate digit in `inc` (every later position
+//! moves); hover
 //! median and p99; the server's resident memory; and what the diagnostics cost to serialize and send.
 //! Each program is measured in three setups: with every finding published (the server's default)
 //! and with `maxDiagnostics` at 1,000 (as the VS Code extension starts the server), both over pipes
@@ -14,8 +15,15 @@
 //! Run with `cargo bench --bench lsp_latency`. `BENCH_LINES` (default 1,000,000), `BENCH_EDITS` and
 //! `BENCH_HOVERS` (default 200 each) and `BENCH_BUDGET_SECS` (default 240, per measurement: a slow
 //! server is measured on fewer samples, and the count is printed) change the run. `BENCH_STYLES`
-//! (default `cam3d,inc`) and `BENCH_SETUPS` (default 3: all setups; 1: the first only, 2: the first
-//! two) narrow it.
+//! (default `cam3d,inc,noisy`) and `BENCH_SETUPS` (default 3: all setups; 1: the first only, 2: the
+//! first two) narrow it. `BENCH_PROGRAM_DIR` keeps the generated programs there and reuses them.
+//!
+//! Side by side: `BENCH_VARIANTS` lists servers separated by `;`, each `name`, optionally
+//! `@/path/to/binary` (default: this build's binary) and `:KEY=VALUE` environment settings (for
+//! example `SINUMERIK_LSP_MEASURE_WITHOUT=diagnostics-reuse`); `BENCH_ROUNDS` (default 1) repeats
+//! the whole set. Rounds, styles and variants are interleaved (each round runs every style with every
+//! variant), and the end prints the median of each figure over the rounds, per style and variant,
+//! with the peak resident memory (`VmHWM`) against the file's size.
 
 use serde_json::{json, Value};
 use std::io::{BufRead, BufReader, Read, Write};
@@ -104,8 +112,9 @@ enum Transport {
 }
 
 impl Server {
-    fn start(transport: Transport) -> Server {
-        let mut command = Command::new(env!("CARGO_BIN_EXE_sinumerik-lsp"));
+    fn start(transport: Transport, variant: &Variant) -> Server {
+        let mut command = Command::new(&variant.binary);
+        command.envs(variant.env.iter().map(|(key, value)| (key, value)));
         // The server's log says how long its analyses and diagnostics took (when over 100 ms).
         command.stderr(Stdio::from(
             std::fs::File::create(log_path()).expect("the log file can be created"),
@@ -261,10 +270,19 @@ impl Server {
     }
 
     fn resident_kib(&self) -> Option<u64> {
+        self.status_kib("VmRSS:")
+    }
+
+    /// The most resident memory the server had at any moment (`VmHWM`).
+    fn peak_kib(&self) -> Option<u64> {
+        self.status_kib("VmHWM:")
+    }
+
+    fn status_kib(&self, field: &str) -> Option<u64> {
         let status = std::fs::read_to_string(format!("/proc/{}/status", self.child.id())).ok()?;
         status
             .lines()
-            .find_map(|line| line.strip_prefix("VmRSS:"))
+            .find_map(|line| line.strip_prefix(field))
             .and_then(|value| value.trim().trim_end_matches("kB").trim().parse().ok())
     }
 
@@ -356,7 +374,7 @@ fn env_number(name: &str, default: usize) -> usize {
 /// Where a one-character edit goes on line `line` of the program: a space at the start (cam3d), or
 /// the last digit of its first coordinate replaced (inc). `None` when the line has no coordinate.
 fn edit_for(style: &str, line: &str) -> Option<(usize, usize, String)> {
-    if style == "cam3d" {
+    if style != "inc" {
         return Some((0, 0, " ".to_string()));
     }
     let bytes = line.as_bytes();
@@ -387,20 +405,83 @@ struct Setup {
     transport: Transport,
 }
 
-fn run(style: &str, line_count: usize, setup: &Setup) {
-    let Some(text) = generated::generate(style, line_count) else {
-        println!("{style}: skipped (../shared/bench/gen_program.py or python3 not available)");
-        return;
+/// A server measured side by side with others.
+struct Variant {
+    name: String,
+    binary: std::path::PathBuf,
+    env: Vec<(String, String)>,
+}
+
+/// The servers of `BENCH_VARIANTS` (see the file's documentation); this build's alone by default.
+fn variants() -> Vec<Variant> {
+    let list = std::env::var("BENCH_VARIANTS").unwrap_or_else(|_| "this build".to_string());
+    list.split(';')
+        .filter(|item| !item.trim().is_empty())
+        .map(|item| {
+            let mut parts = item.split(':');
+            let head = parts.next().unwrap_or_default();
+            let (name, binary) = match head.split_once('@') {
+                Some((name, path)) => (name, std::path::PathBuf::from(path)),
+                None => (
+                    head,
+                    std::path::PathBuf::from(env!("CARGO_BIN_EXE_sinumerik-lsp")),
+                ),
+            };
+            let env = parts
+                .filter_map(|setting| setting.split_once('='))
+                .map(|(key, value)| (key.to_string(), value.to_string()))
+                .collect();
+            Variant {
+                name: name.trim().to_string(),
+                binary,
+                env,
+            }
+        })
+        .collect()
+}
+
+/// The program of `style`, from `BENCH_PROGRAM_DIR` when it was kept there before.
+fn program(style: &str, line_count: usize) -> Option<String> {
+    let Ok(directory) = std::env::var("BENCH_PROGRAM_DIR") else {
+        return generated::generate(style, line_count);
     };
+    let path = std::path::Path::new(&directory).join(format!("{style}_{line_count}.mpf"));
+    if let Ok(text) = std::fs::read_to_string(&path) {
+        return Some(text);
+    }
+    let text = generated::generate(style, line_count)?;
+    let _ = std::fs::write(&path, &text);
+    Some(text)
+}
+
+/// The goal figures of one run, in milliseconds and megabytes.
+#[derive(Clone, Copy, Default)]
+struct Figures {
+    open: f64,
+    edit_median: f64,
+    edit_p99: f64,
+    hover_p99: f64,
+    peak_mb: f64,
+    file_mb: f64,
+}
+
+fn run(style: &str, line_count: usize, setup: &Setup, variant: &Variant) -> Option<Figures> {
+    let Some(text) = program(style, line_count) else {
+        println!("{style}: skipped (../shared/bench/gen_program.py or python3 not available)");
+        return None;
+    };
+    let mut figures = Figures::default();
     let mut lines: Vec<String> = text.lines().map(str::to_string).collect();
     let megabytes = text.len() as f64 / 1e6;
+    figures.file_mb = megabytes;
     println!(
-        "{style}, {}: {} lines, {megabytes:.1} MB",
+        "{style}, {}, server {}: {} lines, {megabytes:.1} MB",
         setup.name,
+        variant.name,
         lines.len()
     );
     let budget = Duration::from_secs(env_number("BENCH_BUDGET_SECS", 240) as u64);
-    let mut server = Server::start(setup.transport);
+    let mut server = Server::start(setup.transport, variant);
     let (_, id) = server.request(
         "initialize",
         json!({"processId": null, "rootUri": null, "capabilities": {"general": {"positionEncodings": ["utf-16"]}}, "initializationOptions": setup.options}),
@@ -424,6 +505,7 @@ fn run(style: &str, line_count: usize, setup: &Setup) {
         .zip(faults_before)
         .map(|(after, before)| after.saturating_sub(before));
     let diagnostic_count = first.diagnostic_count;
+    figures.open = (first.at - started).as_secs_f64() * 1e3;
     println!(
         "  didOpen to first publishDiagnostics: {} ({diagnostic_count} diagnostics, a {:.1} MB message)",
         milliseconds(first.at - started),
@@ -478,12 +560,16 @@ fn run(style: &str, line_count: usize, setup: &Setup) {
         edit_first_bytes.push(arrival.first_byte_at - sent);
         lines[line_idx].replace_range(start..end, &new_text);
     }
-    let kind = if style == "cam3d" {
+    let kind = if style != "inc" {
         "space at the start of a line"
     } else {
         "changed coordinate digit"
     };
     summary(&format!("edit ({kind}) to publishDiagnostics"), &mut edits);
+    if !edits.is_empty() {
+        figures.edit_median = percentile(&mut edits, 0.5).as_secs_f64() * 1e3;
+        figures.edit_p99 = percentile(&mut edits, 0.99).as_secs_f64() * 1e3;
+    }
     summary(
         "  of which: edit to the first byte of that publishDiagnostics",
         &mut edit_first_bytes,
@@ -501,6 +587,9 @@ fn run(style: &str, line_count: usize, setup: &Setup) {
         hovers.push(arrival.at - sent);
     }
     summary("hover on an axis word", &mut hovers);
+    if !hovers.is_empty() {
+        figures.hover_p99 = percentile(&mut hovers, 0.99).as_secs_f64() * 1e3;
+    }
     if let Some(resident) = server.resident_kib() {
         println!(
             "  resident memory after the edits and hovers: {:.1} MB ({:.2}x the file)",
@@ -517,8 +606,17 @@ fn run(style: &str, line_count: usize, setup: &Setup) {
             resident as f64 * 1024.0 / (megabytes * 1e6)
         );
     }
+    if let Some(peak) = server.peak_kib() {
+        figures.peak_mb = peak as f64 * 1024.0 / 1e6;
+        println!(
+            "  peak resident memory (VmHWM): {:.1} MB ({:.2}x the file)",
+            figures.peak_mb,
+            figures.peak_mb / megabytes
+        );
+    }
     server.stop();
     writing_cost_from_log();
+    Some(figures)
 }
 
 /// What reading the didOpen message costs a server, measured here with the same libraries: the
@@ -619,12 +717,66 @@ fn main() {
             transport: Transport::SocketPairs,
         },
     ];
-    let styles = std::env::var("BENCH_STYLES").unwrap_or_else(|_| "cam3d,inc".to_string());
+    let styles = std::env::var("BENCH_STYLES").unwrap_or_else(|_| "cam3d,inc,noisy".to_string());
     let setup_count = env_number("BENCH_SETUPS", setups.len()).min(setups.len());
+    let variants = variants();
+    let rounds = env_number("BENCH_ROUNDS", 1).max(1);
     for setup in &setups[..setup_count] {
-        for style in styles.split(',') {
-            run(style, line_count, setup);
+        let mut results: Vec<(String, String, Vec<Figures>)> = Vec::new();
+        for round in 0..rounds {
+            for style in styles.split(',') {
+                for variant in &variants {
+                    println!("round {}", round + 1);
+                    let Some(figures) = run(style, line_count, setup, variant) else {
+                        continue;
+                    };
+                    match results
+                        .iter_mut()
+                        .find(|(s, v, _)| s == style && *v == variant.name)
+                    {
+                        Some((_, _, list)) => list.push(figures),
+                        None => {
+                            results.push((style.to_string(), variant.name.clone(), vec![figures]))
+                        }
+                    }
+                }
+            }
         }
+        side_by_side(setup.name, &results);
     }
     serialization_cost(24_000);
+}
+
+/// The median of each figure over the rounds, per style and server, as a table.
+fn side_by_side(setup: &str, results: &[(String, String, Vec<Figures>)]) {
+    println!("\nmedians over the rounds ({setup}):");
+    println!("| style | server | rounds | open ms | edit median ms | edit p99 ms | hover p99 ms | peak MB (x file) |");
+    println!("|---|---|---:|---:|---:|---:|---:|---:|");
+    let median = |values: Vec<f64>| {
+        let mut values = values;
+        values.sort_by(f64::total_cmp);
+        values[values.len() / 2]
+    };
+    for (style, variant, list) in results {
+        let of = |pick: fn(&Figures) -> f64| median(list.iter().map(pick).collect());
+        let all = |pick: fn(&Figures) -> f64| {
+            list.iter()
+                .map(|figures| format!("{:.1}", pick(figures)))
+                .collect::<Vec<_>>()
+                .join("/")
+        };
+        println!(
+            "| {style} | {variant} | {} | {:.0} ({}) | {:.2} | {:.2} ({}) | {:.2} | {:.0} ({:.2}x; {}) |",
+            list.len(),
+            of(|f| f.open),
+            all(|f| f.open),
+            of(|f| f.edit_median),
+            of(|f| f.edit_p99),
+            all(|f| f.edit_p99),
+            of(|f| f.hover_p99),
+            of(|f| f.peak_mb),
+            of(|f| f.peak_mb) / list[0].file_mb,
+            all(|f| f.peak_mb),
+        );
+    }
 }

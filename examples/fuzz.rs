@@ -1,9 +1,10 @@
 //! A coverage-free mutation fuzzer for the stable toolchain: the block parser, the full analysis, the
 //! document model under random edits, the command line's output formats and the configuration
-//! reader, each checked against the properties the product promises.
+//! reader, the server's framing parser and its encoding of diagnostics, each checked against the
+//! properties the product promises.
 //!
 //! ```text
-//! cargo run --release --example fuzz -- --target parser|analysis|document|cli|config [--seconds N] [--steps N]
+//! cargo run --release --example fuzz -- --target parser|analysis|document|cli|config|framing|publish [--seconds N] [--steps N]
 //!     [--seed S] [--timeout-ms T] [--max-input-bytes B] [--memory-mb M]
 //! cargo run --release --example fuzz -- --target document --replay FILE...
 //! ```
@@ -36,6 +37,8 @@ mod seeds;
 mod spans;
 #[path = "fuzz/targets.rs"]
 mod targets;
+#[path = "fuzz/transport.rs"]
+mod transport;
 
 use cases::{generate_case, run_case, Case, Target};
 use std::alloc::{GlobalAlloc, Layout, System};
@@ -104,7 +107,7 @@ struct Options {
 }
 
 const USAGE: &str =
-    "usage: fuzz --target parser|analysis|document|cli|config [--seconds N] [--steps N] [--seed S] \
+    "usage: fuzz --target parser|analysis|document|cli|config|framing|publish [--seconds N] [--steps N] [--seed S] \
 [--timeout-ms T] [--max-input-bytes B] [--memory-mb M] [--out DIR] [--save-slowest FILE] [--save-hungriest FILE] [--self-test panic|abort|hang|memory|overflow] \
 [--replay FILE...]";
 

@@ -4,6 +4,9 @@
 //! (lexer, parser, syntax diagnostics), `analysis` (modal state, resolved positions, semantic
 //! diagnostics), `cli` (the command line), `lsp` (the language server). See ARCHITECTURE.md.
 
+// `unsafe` lives in one module, `lsp/transport/sys.rs`, which alone is allowed it.
+#![deny(unsafe_code)]
+
 pub mod analysis;
 pub mod cli;
 pub mod config;

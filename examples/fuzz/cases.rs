@@ -8,6 +8,7 @@ use super::generate;
 use super::random::Random;
 use super::seeds::Seed;
 use super::targets::{check_analysis, check_parser};
+use super::transport::{check_framing, check_publish};
 use std::path::Path;
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -17,6 +18,8 @@ pub enum Target {
     Document,
     Cli,
     Config,
+    Framing,
+    Publish,
 }
 
 impl Target {
@@ -27,6 +30,8 @@ impl Target {
             "document" => Some(Target::Document),
             "cli" => Some(Target::Cli),
             "config" => Some(Target::Config),
+            "framing" => Some(Target::Framing),
+            "publish" => Some(Target::Publish),
             _ => None,
         }
     }
@@ -38,6 +43,8 @@ impl Target {
             Target::Document => "document",
             Target::Cli => "cli",
             Target::Config => "config",
+            Target::Framing => "framing",
+            Target::Publish => "publish",
         }
     }
 }
@@ -99,6 +106,8 @@ pub fn generate_case(
         Target::Cli => Case::Text(generate_text(&mut random, donor, 300, max_bytes / 4)),
         Target::Config => Case::Text(super::config::generate_config(&mut random)),
         Target::Document => Case::Document(document::generate_case(&mut random, donor, 40)),
+        Target::Framing => Case::Text(super::transport::generate_stream(&mut random, donor)),
+        Target::Publish => Case::Text(generate_text(&mut random, donor, 300, max_bytes / 4)),
     }
 }
 
@@ -145,6 +154,10 @@ pub fn run_case(target: Target, case: &Case) -> Result<usize, String> {
         (Target::Config, Case::Text(text)) => check_config(text).map(|()| 0),
         (Target::Config, Case::Document(case)) => check_config(&case.final_text()).map(|()| 0),
         (Target::Document, Case::Document(case)) => document::check_document(case),
+        (Target::Framing, Case::Text(text)) => check_framing(text).map(|()| 0),
+        (Target::Framing, Case::Document(case)) => check_framing(&case.final_text()).map(|()| 0),
+        (Target::Publish, Case::Text(text)) => check_publish(text).map(|()| 0),
+        (Target::Publish, Case::Document(case)) => check_publish(&case.final_text()).map(|()| 0),
         (Target::Document, Case::Text(text)) => document::check_document(&edits_of_text(text)),
         (Target::Parser, Case::Document(case)) => {
             check_parser(&case.join(&case.lines))?;

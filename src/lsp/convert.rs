@@ -7,7 +7,6 @@
 
 use crate::diagnostics::{LineDiagnostic, Severity, Span};
 use ropey::Rope;
-use std::borrow::Cow;
 use tower_lsp_server::ls_types::{
     self, DiagnosticSeverity, NumberOrString, Position, PositionEncodingKind, Range,
 };
@@ -123,118 +122,6 @@ fn severity(severity: Severity) -> DiagnosticSeverity {
     }
 }
 
-/// The JSON array of diagnostics sorted by line, reading each line's text once from `line_text` (not
-/// at all when `all_ascii` says the document is ASCII, where byte offsets are the columns in both
-/// encodings). Written directly as JSON text, in the shape of [`diagnostic_to_lsp`]: tens of
-/// thousands of diagnostics are published after every edit of a large program, and building LSP
-/// values first took several times as long.
-pub fn diagnostics_json<'a>(
-    diagnostics: &[LineDiagnostic],
-    mut line_text: impl FnMut(usize) -> Cow<'a, str>,
-    all_ascii: bool,
-    encoding: PositionEncoding,
-) -> Vec<u8> {
-    let mut array = Vec::with_capacity(2 + diagnostics.len() * 200);
-    array.push(b'[');
-    let mut current: Option<(usize, Cow<'a, str>)> = None;
-    for (index, item) in diagnostics.iter().enumerate() {
-        let range = if all_ascii {
-            ascii_range(item)
-        } else {
-            if current.as_ref().map(|(line_idx, _)| *line_idx) != Some(item.line) {
-                current = Some((item.line, line_text(item.line)));
-            }
-            let line = current
-                .as_ref()
-                .map(|(_, text)| text.as_ref())
-                .unwrap_or("");
-            span_to_range(item.line, line, item.diagnostic.span, encoding)
-        };
-        if index > 0 {
-            array.push(b',');
-        }
-        write_diagnostic_json(&mut array, range, item);
-    }
-    array.push(b']');
-    array
-}
-
-/// The range of a diagnostic in an ASCII line, where byte offsets are the columns in either encoding.
-pub fn ascii_range(item: &LineDiagnostic) -> Range {
-    let line_number = u32::try_from(item.line).unwrap_or(u32::MAX);
-    let span = item.diagnostic.span;
-    let column = |byte: usize| u32::try_from(byte).unwrap_or(u32::MAX);
-    Range::new(
-        Position::new(line_number, column(span.start())),
-        Position::new(line_number, column(span.end().max(span.start()))),
-    )
-}
-
-/// How every diagnostic object starts; the start line's number follows.
-pub const DIAGNOSTIC_JSON_START: &[u8] = br#"{"range":{"start":{"line":"#;
-/// What comes before the end line's number within a diagnostic object.
-pub const DIAGNOSTIC_JSON_END_LINE: &[u8] = br#""end":{"line":"#;
-
-/// One diagnostic as a JSON object (starting with [`DIAGNOSTIC_JSON_START`]) at `range`.
-pub fn write_diagnostic_json(out: &mut Vec<u8>, range: Range, item: &LineDiagnostic) {
-    use std::io::Write;
-    let severity = match item.diagnostic.severity {
-        Severity::Error => 1,
-        Severity::Warning => 2,
-        Severity::Information => 3,
-        Severity::Hint => 4,
-    };
-    out.extend_from_slice(DIAGNOSTIC_JSON_START);
-    let _ = write!(
-        out,
-        r#"{},"character":{}}},"end":{{"line":{},"character":{}}}}},"severity":{severity},"code":"{}","source":"sinumerik","message":"#,
-        range.start.line,
-        range.start.character,
-        range.end.line,
-        range.end.character,
-        item.diagnostic.code.as_str(),
-    );
-    let _ = serde_json::to_writer(&mut *out, &item.diagnostic.message);
-    out.push(b'}');
-}
-
-/// The whole `textDocument/publishDiagnostics` message in one buffer, header included (the server
-/// sends the pieces of [`publish_diagnostics_frame`] instead; tests read the message whole).
-#[cfg(test)]
-pub fn publish_diagnostics_message(
-    uri: &ls_types::Uri,
-    version: Option<i32>,
-    diagnostics_array: &[u8],
-) -> Vec<u8> {
-    let (head, tail) = publish_diagnostics_frame(uri, version, diagnostics_array.len());
-    let mut message = Vec::with_capacity(head.len() + diagnostics_array.len() + tail.len());
-    message.extend_from_slice(&head);
-    message.extend_from_slice(diagnostics_array);
-    message.extend_from_slice(&tail);
-    message
-}
-
-/// What comes before (the header included) and after a diagnostics array of `array_length` bytes in
-/// its `textDocument/publishDiagnostics` message: the array itself is sent as it is, without a copy.
-pub fn publish_diagnostics_frame(
-    uri: &ls_types::Uri,
-    version: Option<i32>,
-    array_length: usize,
-) -> (Vec<u8>, Vec<u8>) {
-    let mut prefix =
-        br#"{"jsonrpc":"2.0","method":"textDocument/publishDiagnostics","params":{"uri":"#.to_vec();
-    let _ = serde_json::to_writer(&mut prefix, uri.as_str());
-    prefix.extend_from_slice(br#","diagnostics":"#);
-    let suffix = match version {
-        Some(version) => format!(r#","version":{version}}}}}"#),
-        None => "}}".to_string(),
-    };
-    let length = prefix.len() + array_length + suffix.len();
-    let mut head = format!("Content-Length: {length}\r\n\r\n").into_bytes();
-    head.extend_from_slice(&prefix);
-    (head, suffix.into_bytes())
-}
-
 /// One diagnostic, with `line` the text of its line.
 pub fn diagnostic_to_lsp(
     item: &LineDiagnostic,
@@ -307,74 +194,6 @@ mod tests {
         assert_eq!(at(1, 6, PositionEncoding::Utf8), 4 + 3);
         assert_eq!(at(1, 7, PositionEncoding::Utf8), 4 + 4);
         assert_eq!(at(7, 0, PositionEncoding::Utf16), rope.len_chars());
-    }
-
-    #[test]
-    fn the_written_notification_equals_the_lsp_types_serialization() {
-        use crate::diagnostics::{Code, Diagnostic};
-        let lines = ["N10 G0 Z=AC17 ; \"quoted\" ä", "N20 😀 X\t1"];
-        let diagnostics = vec![
-            LineDiagnostic {
-                line: 0,
-                diagnostic: Diagnostic::new(
-                    Code::ModifierWithoutParentheses,
-                    Span::new(9, 13),
-                    "write `AC(17)` \"now\"\n",
-                ),
-            },
-            LineDiagnostic {
-                line: 1,
-                diagnostic: Diagnostic::new(
-                    Code::UnexpectedCharacter,
-                    Span::new(4, 8),
-                    "ünexpected",
-                ),
-            },
-        ];
-        let uri: ls_types::Uri = "file:///a%20b/c.mpf".parse().unwrap();
-        for encoding in [PositionEncoding::Utf8, PositionEncoding::Utf16] {
-            let array = diagnostics_json(
-                &diagnostics,
-                |index| Cow::Borrowed(lines[index]),
-                false,
-                encoding,
-            );
-            let message = publish_diagnostics_message(&uri, Some(7), &array);
-            let header_end = message
-                .windows(4)
-                .position(|window| window == b"\r\n\r\n")
-                .unwrap()
-                + 4;
-            let body = &message[header_end..];
-            let header = std::str::from_utf8(&message[..header_end]).unwrap();
-            assert_eq!(header, format!("Content-Length: {}\r\n\r\n", body.len()));
-            let written: serde_json::Value = serde_json::from_slice(body).unwrap();
-            let expected = ls_types::PublishDiagnosticsParams {
-                uri: uri.clone(),
-                diagnostics: diagnostics
-                    .iter()
-                    .map(|item| diagnostic_to_lsp(item, lines[item.line], encoding))
-                    .collect(),
-                version: Some(7),
-            };
-            assert_eq!(written["params"], serde_json::to_value(&expected).unwrap());
-            assert_eq!(written["method"], "textDocument/publishDiagnostics");
-        }
-        // An ASCII document needs no line text: the same ranges come from the spans alone.
-        let ascii_lines = ["N10 G0 Z=AC17 ; x", "N20 ?? X1"];
-        let from_text = diagnostics_json(
-            &diagnostics,
-            |index| Cow::Borrowed(ascii_lines[index]),
-            false,
-            PositionEncoding::Utf16,
-        );
-        let from_spans = diagnostics_json(
-            &diagnostics,
-            |_| unreachable!("no line is read"),
-            true,
-            PositionEncoding::Utf16,
-        );
-        assert_eq!(from_text, from_spans);
     }
 
     #[test]

@@ -6,9 +6,7 @@
 //! wrote its message, so it writes again instead of publishing an outdated set.
 
 use crate::diagnostics::LineDiagnostic;
-use crate::lsp::convert::{diagnostics_json, PositionEncoding};
-use crate::lsp::diagnostics_array::JsonArray;
-use crate::lsp::documents::{lock, Analysed};
+use crate::lsp::documents::lock;
 use crate::lsp::text_document::RopeLineChange;
 use std::sync::Mutex;
 
@@ -69,34 +67,19 @@ impl ExtraDiagnostics {
     }
 }
 
-/// The analysis's JSON array of diagnostics with the cross-file findings added, and the generation
-/// of those findings. Without findings the array is returned as it is (no copy).
-pub fn with_extra(
-    array: JsonArray,
+/// The cross-file findings on the document's `line_count` lines, and their generation.
+pub fn extra_findings(
     extra: &Mutex<ExtraDiagnostics>,
-    analysed: &Analysed,
-    encoding: PositionEncoding,
-) -> (JsonArray, u64) {
+    line_count: usize,
+) -> (Vec<LineDiagnostic>, u64) {
     let extra = lock(extra);
-    if extra.items.is_empty() {
-        return (array, extra.generation);
-    }
-    let lines = analysed.lines();
-    let all_ascii = analysed.rope.len_bytes() == analysed.rope.len_chars();
-    let line_count = crate::analysis::document::LineSource::line_count(&lines);
-    let items: Vec<LineDiagnostic> = extra
+    let items = extra
         .items
         .iter()
         .filter(|item| item.line < line_count)
         .cloned()
         .collect();
-    let added = diagnostics_json(
-        &items,
-        |line| crate::analysis::document::LineSource::line(&lines, line),
-        all_ascii,
-        encoding,
-    );
-    (array.join_array(&added), extra.generation)
+    (items, extra.generation)
 }
 
 #[cfg(test)]
@@ -132,7 +115,7 @@ mod tests {
                 text: "x".into(),
             }],
             2,
-            PositionEncoding::Utf16,
+            crate::lsp::convert::PositionEncoding::Utf16,
         )
         .unwrap();
         extra.on_edit(change, 2);

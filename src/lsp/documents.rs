@@ -11,15 +11,16 @@ use crate::analysis::ProgramKind;
 use crate::config::MachineConfig;
 use crate::diagnostics::LineDiagnostic;
 use crate::ide::execution::{execute_document, DocumentExecution};
-use crate::lsp::convert::{publish_diagnostics_frame, PositionEncoding};
-use crate::lsp::cross_file::{with_extra, ExtraDiagnostics};
-use crate::lsp::diagnostics_array::{Columns, DiagnosticsArray, JsonArray};
-use crate::lsp::diagnostics_limit::{note_json, within_limit};
+use crate::lsp::convert::PositionEncoding;
+use crate::lsp::cross_file::{extra_findings, ExtraDiagnostics};
 use crate::lsp::log;
-use crate::lsp::outgoing::{Outgoing, OutgoingSender};
+use crate::lsp::publish::limit::{note, note_diagnostic, within_limit};
+use crate::lsp::publish::wire::WireDiagnostic;
+use crate::lsp::publish::{self, Publisher};
 use crate::lsp::text_document::{
     apply_changes, core_line_count, ChangeError, DocumentText, RopeLineChange, RopeLines,
 };
+use crate::lsp::transport::outbox::{Outgoing, OutgoingSender, Part};
 use ropey::Rope;
 use std::collections::HashMap;
 use std::path::PathBuf;
@@ -206,8 +207,8 @@ pub struct OpenDocument {
     pub kind: ProgramKind,
     text: Mutex<TextState>,
     analysis: Mutex<Option<Analysed>>,
-    /// The diagnostics last written, for the worker only.
-    published: Mutex<Option<Published>>,
+    /// The diagnostics last written (in that position encoding), for the worker only.
+    published: Mutex<Option<(PositionEncoding, Publisher)>>,
     /// The cross-file findings, published with the analysis's diagnostics (`cross_file.rs`).
     pub extra: Mutex<ExtraDiagnostics>,
 }
@@ -220,23 +221,12 @@ pub struct TextSnapshot {
     pub config: Arc<MachineConfig>,
 }
 
-/// Diagnostics as last written. The next array reuses what this one wrote: an edit that leaves every
-/// diagnostic as it was (most keystrokes in a large program) reuses all of it, and one that changes a
-/// few rewrites only those (see `diagnostics_array.rs`, also for documents that are not ASCII).
-struct Published {
-    encoding: PositionEncoding,
-    array: DiagnosticsArray,
-    /// The revision of the analysis's findings the array was written from, when it holds all of
-    /// them (not a selection by `maxDiagnostics`): the analysis then says what changed since.
-    findings_revision: Option<u64>,
-}
-
 /// What a worker needs besides the document.
 #[derive(Clone)]
 pub struct WorkerContext {
     pub outgoing: OutgoingSender,
     pub encoding: PositionEncoding,
-    /// The `maxDiagnostics` setting (`diagnostics_limit.rs`).
+    /// The `maxDiagnostics` setting (`publish/limit.rs`).
     pub max_diagnostics: Option<usize>,
 }
 
@@ -267,63 +257,44 @@ impl OpenDocument {
         }
     }
 
-    /// The JSON array of the analysis's diagnostics (at most `limit` of them, and then a note), built
-    /// from the last one where it still holds.
-    fn diagnostics_array(
+    /// The `publishDiagnostics` body of the analysis's diagnostics (at most `limit` of them, and
+    /// then a note) and the cross-file findings `extra`, taking over what the last one wrote where
+    /// it still holds (`publish/mod.rs`).
+    fn publication(
         &self,
         analysed: &Analysed,
         encoding: PositionEncoding,
         limit: Option<usize>,
-    ) -> JsonArray {
+        extra: &[LineDiagnostic],
+    ) -> Vec<Part> {
         let (diagnostics, left_out) = within_limit(analysed.analysis.diagnostics(), limit);
-        let all_of_them = matches!(diagnostics, std::borrow::Cow::Borrowed(_));
-        let array = self.array_of(analysed, &diagnostics, all_of_them, encoding);
-        match limit {
-            Some(limit) if left_out > 0 => array.join_array(&note_json(left_out, limit)),
-            _ => array,
-        }
-    }
-
-    fn array_of(
-        &self,
-        analysed: &Analysed,
-        diagnostics: &[LineDiagnostic],
-        all_of_them: bool,
-        encoding: PositionEncoding,
-    ) -> JsonArray {
         let all_ascii = analysed.rope.len_bytes() == analysed.rope.len_chars();
         let lines = analysed.lines();
-        let line_text = |line_idx: usize| lines.line(line_idx);
-        let columns = if all_ascii || encoding == PositionEncoding::Utf8 {
-            Columns::Bytes
-        } else {
-            Columns::InLine {
-                line_text: &line_text,
-                encoding,
-            }
-        };
+        let ranges = publish::ranges(&diagnostics, |line| lines.line(line), all_ascii, encoding);
+        let extra_ranges = publish::ranges(extra, |line| lines.line(line), all_ascii, encoding);
+        let note_text = limit
+            .filter(|_| left_out > 0)
+            .map(|limit| note(left_out, limit));
+        let more: Vec<WireDiagnostic<'_>> = note_text
+            .as_deref()
+            .map(note_diagnostic)
+            .into_iter()
+            .chain(
+                extra
+                    .iter()
+                    .zip(extra_ranges)
+                    .map(|(item, range)| WireDiagnostic::of(item, range)),
+            )
+            .collect();
         let mut published = lock(&self.published);
-        // Unchanged diagnostics are found while building: every chunk is then taken over. The
-        // analysis says which of its findings an edit replaced; only those are compared then.
-        let previous = published.as_ref().filter(|last| last.encoding == encoding);
-        let analysis = &analysed.analysis;
-        let change = previous
-            .and_then(|last| last.findings_revision)
-            .filter(|_| all_of_them)
-            .and_then(|revision| analysis.findings_change_since(revision));
-        let array = DiagnosticsArray::build(
-            previous.map(|last| &last.array),
-            diagnostics,
-            change,
-            &columns,
-        );
-        let json = array.json().clone();
-        *published = Some(Published {
-            encoding,
-            array,
-            findings_revision: all_of_them.then(|| analysis.findings_revision()),
-        });
-        json
+        if published.as_ref().is_none_or(|(last, _)| *last != encoding) {
+            *published = Some((encoding, Publisher::default()));
+        }
+        let Some((_, publisher)) = published.as_mut() else {
+            return Vec::new();
+        };
+        let items = publisher.encode_shared(&diagnostics, ranges);
+        publish::publication_parts(&self.uri, Some(analysed.version), items, &more)
     }
 
     /// The current revision; a request remembers it to know whether its answer is still current.
@@ -517,15 +488,14 @@ impl OpenDocument {
                 let slot = self.catch_up();
                 let analysed_in = started.elapsed();
                 slot.as_ref().map(|analysed| {
-                    let (array, extra_generation) = with_extra(
-                        self.diagnostics_array(analysed, context.encoding, context.max_diagnostics),
-                        &self.extra,
+                    let line_count = LineSource::line_count(&analysed.lines());
+                    let (extra, extra_generation) = extra_findings(&self.extra, line_count);
+                    let message = self.publication(
                         analysed,
                         context.encoding,
+                        context.max_diagnostics,
+                        &extra,
                     );
-                    let (head, tail) =
-                        publish_diagnostics_frame(&self.uri, Some(analysed.version), array.len());
-                    let message = (head, array, tail);
                     let count = analysed.analysis.diagnostics().len();
                     (
                         (analysed.revision, extra_generation),
@@ -558,8 +528,7 @@ impl OpenDocument {
                         && lock(&self.extra).generation() == extra_generation
                     {
                         // Sent under the lock: a newer revision's publication cannot overtake it.
-                        let (head, array, tail) = message;
-                        context.outgoing.send_parts(head, array, tail);
+                        context.outgoing.send_parts(message);
                         text.worker_running = false;
                         return;
                     }

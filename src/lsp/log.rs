@@ -1,7 +1,7 @@
 //! Logging of the server: lines on stderr (editors show a server's stderr in its output panel), and
 //! the handlers or jobs that took longer than [`SLOW`].
 
-use crate::lsp::outgoing::OutgoingSender;
+use crate::lsp::transport::outbox::OutgoingSender;
 use std::time::{Duration, Instant};
 use tower_lsp_server::ls_types::MessageType;
 

@@ -6,53 +6,42 @@
 //! - `documents.rs`: open documents, their analysis on snapshots, the worker that publishes.
 //! - `text_document.rs`: rope text, `apply_changes`, the lines an edit touched, `LineSource`.
 //! - `convert.rs`: positions in the negotiated encoding, spans to ranges, diagnostics.
-//! - `diagnostics_array.rs`: the published diagnostics' JSON, reused by the next publication.
-//! - `diagnostics_limit.rs`: the findings published under the `maxDiagnostics` setting.
+//! - `publish/`: diagnostics publication (the `maxDiagnostics` limit, the one JSON encoder of
+//!   diagnostics, reuse of the unchanged items from one publication to the next).
 //! - `hover.rs`, `inlay.rs`, `code_action.rs`, `endpoint_preview.rs`: one feature each.
 //! - `words.rs`: where the words of a block are, for the cursor.
 //! - `settings.rs`: settings and each document's machine configuration; `ext.rs`: own protocol types.
 //! - `library.rs`: the programs a document calls, found through the workspace index.
-//! - `outgoing.rs`: all output; the server's own notifications serialized straight to text.
-//! - `log.rs`: logging and slow-handler reports; `memory.rs`: the allocator's options.
-//! - `framing.rs`: drops malformed messages before they reach the framework's reader.
-//! - `arriving_open.rs`: a large `didOpen` read while it arrives; `open_texts.rs`: the texts of large
-//!   `didOpen` messages, which the guard reads itself; `json_string.rs` unescapes them into ropes.
-//! - `stdio.rs`: the process's stdin and stdout (pipe buffers, the raw output).
+//! - `log.rs`: logging and slow-handler reports.
+//! - `transport/`: one reader, one framing parser, one writer around the framework's dispatch; the
+//!   process's stdio and allocator settings (the crate's only `unsafe`).
 
-mod arriving_open;
 mod call_sites;
 mod code_action;
 mod completion;
 mod config_fixes;
 mod convert;
 mod cross_file;
-mod diagnostics_array;
-mod diagnostics_limit;
 mod documents;
 mod endpoint_preview;
 mod ext;
-mod framing;
-mod frozen_bytes;
 mod hover;
 mod hover_resolution;
 mod inlay;
-mod json_string;
 mod library;
 mod log;
-mod memory;
 mod modal_state;
 mod navigation;
 mod numbers;
-mod open_texts;
-mod outgoing;
 mod outline;
+mod publish;
 mod rewrite_commands;
 mod semantic;
 mod server;
 mod settings;
 mod signature;
-mod stdio;
 mod text_document;
+mod transport;
 mod words;
 mod workspace;
 mod workspace_edit;
@@ -60,10 +49,24 @@ mod workspace_edit;
 pub use convert::PositionEncoding;
 pub use ext::{EndpointPreviewParams, ENDPOINT_PREVIEW_COMMAND};
 pub use rewrite_commands::{FORMAT_COMMAND, RENUMBER_COMMAND};
+// For the fuzzer (examples/fuzz): the framing parser and the encoding of diagnostics.
+pub use publish::{publication as publication_body, ranges as diagnostic_ranges, Publisher};
 pub use text_document::{apply_changes, DocumentText, LineChange, RopeLineChange, RopeLines};
+pub use transport::framing::{Frame, Framer};
+pub use transport::message::{read_message, Incoming, InitializeGate};
 
 use tokio::io::{AsyncRead, AsyncWrite};
-use tower_lsp_server::{LspService, Server};
+use tower_lsp_server::LspService;
+
+/// The service: the `LanguageServer` implementation with the server's own methods.
+fn service(
+    outgoing: transport::outbox::OutgoingSender,
+) -> (LspService<server::Backend>, tower_lsp_server::ClientSocket) {
+    LspService::build(move |client| server::Backend::new(client, outgoing))
+        .custom_method(ext::DOCUMENT_TEXT_REQUEST, server::Backend::document_text)
+        .custom_method(ext::MODAL_STATE_REQUEST, server::Backend::modal_state)
+        .finish()
+}
 
 /// Serves the protocol on `input` and `output` until the client sends `exit` or closes the input.
 pub async fn serve<I, O>(input: I, output: O)
@@ -71,51 +74,14 @@ where
     I: AsyncRead + Unpin + Send + 'static,
     O: AsyncWrite + Unpin + Send + 'static,
 {
-    serve_on(input, outgoing::Sink::Stream(output)).await;
-}
-
-async fn serve_on<I, O>(input: I, output: outgoing::Sink<O>)
-where
-    I: AsyncRead + Unpin + Send + 'static,
-    O: AsyncWrite + Unpin + Send + 'static,
-{
-    let open_texts = std::sync::Arc::new(open_texts::OpenTexts::default());
-    let (outgoing, framework_output, output_tasks) = outgoing::start(output);
-    let input = framing::guard_input(input, outgoing.clone(), std::sync::Arc::clone(&open_texts));
-    let (service, socket) =
-        LspService::build(move |client| server::Backend::new(client, outgoing, open_texts))
-            .custom_method(ext::DOCUMENT_TEXT_REQUEST, server::Backend::document_text)
-            .custom_method(ext::MODAL_STATE_REQUEST, server::Backend::modal_state)
-            .finish();
-    Server::new(input, framework_output, socket)
-        .serve(service)
-        .await;
-    output_tasks.finish().await;
+    transport::serve(input, output, service).await;
 }
 
 /// Runs the server on the process's stdin and stdout; returns the exit code.
 pub fn serve_stdio() -> u8 {
-    memory::configure_allocator();
-    // Analyses run in the blocking pool. Few threads keep few allocator arenas holding freed memory
-    // (a 1,000,000-line analysis allocates hundreds of MB); stdin and stdout need one thread each.
-    let runtime = match tokio::runtime::Builder::new_multi_thread()
-        .max_blocking_threads(8)
-        .enable_all()
-        .build()
-    {
-        Ok(runtime) => runtime,
-        Err(error) => {
-            eprintln!("sinumerik-lsp: cannot start the language server: {error}");
-            return 2;
-        }
-    };
-    stdio::enlarge_stdio_buffers();
-    runtime.block_on(serve_on(
-        tokio::io::stdin(),
-        outgoing::Sink::<tokio::io::Stdout>::Thread(stdio::stdout_output()),
-    ));
-    // Analyses still running in the blocking pool are not waited for: the client has gone.
-    runtime.shutdown_timeout(std::time::Duration::from_millis(100));
+    if !transport::serve_stdio(service) {
+        return 2;
+    }
     // The protocol's exit code: 0 after `shutdown`, 1 when the client left without it.
     if server::SHUTDOWN_REQUESTED.load(std::sync::atomic::Ordering::SeqCst) {
         0

@@ -16,11 +16,10 @@ use crate::lsp::ext::{
 use crate::lsp::hover::hover;
 use crate::lsp::inlay::inlay_hints;
 use crate::lsp::log::HandlerTimer;
-use crate::lsp::open_texts::OpenTexts;
-use crate::lsp::outgoing::{Outgoing, OutgoingSender};
 use crate::lsp::rewrite_commands::{self, FORMAT_COMMAND, RENUMBER_COMMAND};
 use crate::lsp::settings::{machine_config_for, Settings};
 use crate::lsp::text_document::ChangeError;
+use crate::lsp::transport::outbox::{Outgoing, OutgoingSender};
 use crate::lsp::workspace::{self, Workspace};
 use crate::lsp::{completion, navigation, semantic, signature};
 use serde_json::Value;
@@ -70,8 +69,6 @@ pub struct Shared {
     settings: Mutex<Settings>,
     info: Mutex<ClientInfo>,
     outgoing: OutgoingSender,
-    /// Texts the input guard took out of large `didOpen` messages.
-    open_texts: Arc<OpenTexts>,
 }
 
 fn content_modified() -> Error {
@@ -118,7 +115,7 @@ impl std::ops::Deref for Backend {
 }
 
 impl Backend {
-    pub fn new(client: Client, outgoing: OutgoingSender, open_texts: Arc<OpenTexts>) -> Backend {
+    pub fn new(client: Client, outgoing: OutgoingSender) -> Backend {
         let shared = Shared {
             client,
             documents: Documents::default(),
@@ -126,7 +123,6 @@ impl Backend {
             settings: Mutex::new(Settings::default()),
             info: Mutex::new(ClientInfo::default()),
             outgoing,
-            open_texts,
         };
         Backend {
             shared: Arc::new(shared),
@@ -609,13 +605,9 @@ impl LanguageServer for Backend {
 
     async fn did_open(&self, params: DidOpenTextDocumentParams) {
         let _timer = HandlerTimer::new("textDocument/didOpen", &self.outgoing);
-        let item = params.text_document;
-        // The guard keeps the text of a large didOpen itself, already as a rope.
-        let text = match item.text.is_empty() {
-            true => self.open_texts.take(&item.uri, item.version),
-            false => None,
-        }
-        .unwrap_or_else(|| ropey::Rope::from_str(&item.text));
+        let mut item = params.text_document;
+        // The string goes as soon as the rope holds the text: a large program is not kept twice.
+        let text = ropey::Rope::from_str(&std::mem::take(&mut item.text));
         let path = file_path(&item.uri);
         let kind = program_kind(&item.uri, path.as_deref());
         let config = self.machine_config(path.as_deref());

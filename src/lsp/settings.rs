@@ -31,7 +31,7 @@ pub struct Settings {
     pub machine_kind: MachineKind,
     /// Folders of cycles and subprograms outside the workspace folders that the index reads too.
     pub cycle_folders: Vec<PathBuf>,
-    /// At most this many diagnostics are published per document (`diagnostics_limit.rs`); `None`:
+    /// At most this many diagnostics are published per document (`publish/limit.rs`); `None`:
     /// all of them.
     pub max_diagnostics: Option<usize>,
 }

@@ -21,3 +21,5 @@ pub mod seeds;
 pub mod spans;
 #[path = "../../examples/fuzz/targets.rs"]
 pub mod targets;
+#[path = "../../examples/fuzz/transport.rs"]
+pub mod transport;

@@ -7,7 +7,9 @@
 //! change from version to version unless the findings do. Without a limit every finding goes out.
 
 use crate::diagnostics::{LineDiagnostic, Severity};
+use crate::lsp::publish::wire::WireDiagnostic;
 use std::borrow::Cow;
+use tower_lsp_server::ls_types::Range;
 
 /// The findings shown under `limit`, in document order, and how many were left out.
 pub fn within_limit(
@@ -59,19 +61,23 @@ pub fn within_limit(
     (Cow::Owned(shown), diagnostics.len() - limit)
 }
 
-/// The note published with a limited set: a JSON array of one diagnostic at the document's start.
-pub fn note_json(left_out: usize, limit: usize) -> Vec<u8> {
-    let message = format!(
+/// The note published with a limited set, as a diagnostic at the document's start.
+pub fn note(left_out: usize, limit: usize) -> String {
+    format!(
         "{left_out} more findings are not shown here: the setting maxDiagnostics shows {limit} per \
          document, errors first. `sinumerik-lsp check` lists them all."
-    );
-    let note = serde_json::json!([{
-        "range": {"start": {"line": 0, "character": 0}, "end": {"line": 0, "character": 0}},
-        "severity": 3,
-        "source": "sinumerik",
-        "message": message,
-    }]);
-    serde_json::to_vec(&note).unwrap_or_else(|_| b"[]".to_vec())
+    )
+}
+
+/// The note as the client receives it.
+pub fn note_diagnostic(message: &str) -> WireDiagnostic<'_> {
+    WireDiagnostic {
+        range: Range::default(),
+        severity: 3,
+        code: None,
+        source: "sinumerik",
+        message,
+    }
 }
 
 #[cfg(test)]
@@ -133,11 +139,14 @@ mod tests {
 
     #[test]
     fn the_note_is_an_array_of_one_information_diagnostic_saying_how_many_are_left_out() {
-        let note: serde_json::Value = serde_json::from_slice(&note_json(30_387, 1000)).unwrap();
-        assert_eq!(note.as_array().map(Vec::len), Some(1));
-        assert_eq!(note[0]["severity"], 3);
-        assert_eq!(note[0]["range"]["start"]["line"], 0);
-        let message = note[0]["message"].as_str().unwrap();
+        let message = note(30_387, 1000);
+        let mut encoded = Vec::new();
+        note_diagnostic(&message).write(&mut encoded);
+        let note: serde_json::Value = serde_json::from_slice(&encoded).unwrap();
+        assert_eq!(note["severity"], 3);
+        assert_eq!(note["range"]["start"]["line"], 0);
+        assert_eq!(note.get("code"), None);
+        let message = note["message"].as_str().unwrap();
         assert!(message.starts_with("30387 more findings"), "{message}");
         assert!(message.contains("shows 1000"), "{message}");
     }

@@ -1,0 +1,179 @@
+//! The server's transport: one reader, one framing parser, one writer, around tower-lsp-server's
+//! `LspService`, which dispatches each request to the `LanguageServer` implementation.
+//!
+//! - `framing.rs`: the `Content-Length` framing, without IO (fuzzed, `examples/fuzz`).
+//! - `message.rs`: a body read once into the framework's `Request` or `Response`, or dropped with the
+//!   error response JSON-RPC asks for.
+//! - `outbox.rs`: the queue every outgoing message goes through, and the task that writes it.
+//! - `sys.rs`: the process's stdio and allocator settings, the crate's only `unsafe` code.
+//!
+//! The framework's own `Server` is not used: its reader stops for good at the first body it cannot
+//! read (which ends the server on one bad message), and its writer serializes every notification
+//! through a JSON value tree. The loop here is the framework's, with these two ends replaced: requests
+//! are started in arrival order and run up to four at once, responses are written as they finish.
+
+pub mod framing;
+mod framing_reader;
+pub mod message;
+pub mod outbox;
+// The crate's only `unsafe` code: the process settings made through the C library.
+#[allow(unsafe_code)]
+mod sys;
+
+use crate::lsp::log;
+use futures::{SinkExt, StreamExt};
+use message::{Incoming, InitializeGate};
+use outbox::OutgoingSender;
+use tokio::io::{AsyncRead, AsyncWrite};
+use tower::Service;
+use tower_lsp_server::jsonrpc::{Request, Response};
+use tower_lsp_server::ls_types::MessageType;
+use tower_lsp_server::{ClientSocket, LspService};
+
+/// Whether `SINUMERIK_LSP_MEASURE_WITHOUT` (a comma-separated list) turns `piece` of the performance
+/// machinery off: `allocator`, `pipe-buffers` (`sys.rs`) or `diagnostics-reuse` (`publish/`). For
+/// the side-by-side measurement of `docs/performance.md` only; read once.
+pub fn measured_without(piece: &str) -> bool {
+    static LIST: std::sync::OnceLock<Vec<String>> = std::sync::OnceLock::new();
+    LIST.get_or_init(|| {
+        std::env::var("SINUMERIK_LSP_MEASURE_WITHOUT")
+            .unwrap_or_default()
+            .split(',')
+            .map(|item| item.trim().to_string())
+            .collect()
+    })
+    .iter()
+    .any(|item| item == piece)
+}
+
+/// Requests the framework runs at once (its own default).
+const MAX_CONCURRENCY: usize = 4;
+
+/// Bodies from this size on are parsed on a blocking thread (a `didOpen` of a large program).
+const LARGE_BODY_BYTES: usize = 1 << 20;
+
+/// Serves the protocol on `input` and `output` until the client sends `exit` or closes the input;
+/// `build` makes the service, given the sender every outgoing message goes through.
+pub async fn serve<I, O, S>(
+    input: I,
+    output: O,
+    build: impl FnOnce(OutgoingSender) -> (LspService<S>, ClientSocket),
+) where
+    I: AsyncRead + Unpin + Send + 'static,
+    O: AsyncWrite + Unpin + Send + 'static,
+    S: tower_lsp_server::LanguageServer,
+{
+    serve_on(input, outbox::Output::Stream(output), build).await;
+}
+
+async fn serve_on<I, O, S>(
+    input: I,
+    output: outbox::Output<O>,
+    build: impl FnOnce(OutgoingSender) -> (LspService<S>, ClientSocket),
+) where
+    I: AsyncRead + Unpin + Send + 'static,
+    O: AsyncWrite + Unpin + Send + 'static,
+    S: tower_lsp_server::LanguageServer,
+{
+    let (outgoing, writer) = outbox::start(output);
+    let (service, socket) = build(outgoing.clone());
+    run(input, service, socket, outgoing).await;
+    writer.finish().await;
+}
+
+async fn run<I, S>(
+    input: I,
+    mut service: LspService<S>,
+    socket: ClientSocket,
+    outgoing: OutgoingSender,
+) where
+    I: AsyncRead + Unpin + Send + 'static,
+    S: tower_lsp_server::LanguageServer,
+{
+    let (client_requests, mut client_responses) = socket.split();
+    let (client_requests, client_abort) = futures::stream::abortable(client_requests);
+    let (mut tasks, task_queue) = futures::channel::mpsc::channel(100);
+
+    let answer = {
+        let outgoing = outgoing.clone();
+        task_queue
+            .buffer_unordered(MAX_CONCURRENCY)
+            .for_each(move |response: Option<Response>| {
+                if let Some(response) = response {
+                    outgoing.send_message(&response);
+                }
+                std::future::ready(())
+            })
+    };
+    let ask = {
+        let outgoing = outgoing.clone();
+        client_requests.for_each(move |request: Request| {
+            outgoing.send_message(&request);
+            std::future::ready(())
+        })
+    };
+    let read = async {
+        let mut reader = framing_reader::MessageReader::new(input);
+        let mut gate = InitializeGate::default();
+        while let Some(incoming) = reader.next(&mut gate).await {
+            match incoming {
+                Incoming::Request(request) => {
+                    if futures::future::poll_fn(|context| service.poll_ready(context))
+                        .await
+                        .is_err()
+                    {
+                        break;
+                    }
+                    let will_exit = request.method() == "exit";
+                    let call = service.call(request);
+                    let task = async move { call.await.unwrap_or(None) };
+                    if tasks.send(task).await.is_err() || will_exit {
+                        break;
+                    }
+                }
+                Incoming::Response(response) => {
+                    if client_responses.send(response).await.is_err() {
+                        break;
+                    }
+                }
+                Incoming::Invalid { response, reason } => {
+                    log::to_stderr(MessageType::WARNING, &reason);
+                    outgoing.send_message(&response);
+                }
+            }
+        }
+        tasks.disconnect();
+        client_abort.abort();
+    };
+    futures::join!(answer, ask, read);
+}
+
+/// Runs the server on the process's stdin and stdout; `false` when it could not start.
+pub fn serve_stdio<S>(build: impl FnOnce(OutgoingSender) -> (LspService<S>, ClientSocket)) -> bool
+where
+    S: tower_lsp_server::LanguageServer,
+{
+    sys::configure_allocator();
+    // Analyses run in the blocking pool. Few threads keep few allocator arenas holding freed memory
+    // (a 1,000,000-line analysis allocates hundreds of MB).
+    let runtime = match tokio::runtime::Builder::new_multi_thread()
+        .max_blocking_threads(8)
+        .enable_all()
+        .build()
+    {
+        Ok(runtime) => runtime,
+        Err(error) => {
+            eprintln!("sinumerik-lsp: cannot start the language server: {error}");
+            return false;
+        }
+    };
+    sys::enlarge_stdio_buffers();
+    runtime.block_on(serve_on(
+        tokio::io::stdin(),
+        outbox::Output::<tokio::io::Stdout>::Blocking(Box::new(std::io::stdout())),
+        build,
+    ));
+    // Analyses still running in the blocking pool are not waited for: the client has gone.
+    runtime.shutdown_timeout(std::time::Duration::from_millis(100));
+    true
+}
