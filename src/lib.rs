@@ -2,12 +2,15 @@
 //!
 //! Layers, from the bottom: `diagnostics` (shared vocabulary), `config` (machine data), `syntax`
 //! (lexer, parser, syntax diagnostics), `analysis` (modal state, resolved positions, semantic
-//! diagnostics), `cli` (the command line), `lsp` (the language server). See ARCHITECTURE.md.
+//! diagnostics), `ide` (the language features), `io` (reading program files, the preview's JSON), then
+//! side by side `cli` (the command line) and `lsp` (the language server), which `main.rs` chooses
+//! between. See ARCHITECTURE.md.
 
 pub mod analysis;
 pub mod cli;
 pub mod config;
 pub mod diagnostics;
 pub mod ide;
+pub mod io;
 pub mod lsp;
 pub mod syntax;

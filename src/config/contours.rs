@@ -87,30 +87,3 @@ impl RawContours {
         Ok(options)
     }
 }
-
-#[cfg(test)]
-mod tests {
-    use crate::config::parse_config_text;
-    use std::path::Path;
-
-    #[test]
-    fn contours_are_read_and_checked() {
-        let config = parse_config_text(
-            "[contours]\nmax_dummy_blocks = 5\nelement_with_preceding = true\nradius_name = \"radius\"\n",
-            Path::new("sinumerik.toml"),
-        )
-        .expect("valid");
-        assert_eq!(config.contours.max_dummy_blocks, 5);
-        assert!(config.contours.element_with_preceding);
-        assert_eq!(config.contours.radius_name, "RADIUS");
-        assert_eq!(config.contours.angle_name, "ANG");
-        for bad in [
-            "[contours]\nmax_dummy_blocks = -1\n",
-            "[contours]\nangle_name = \"1A\"\n",
-            "[contours]\nunknown = 1\n",
-        ] {
-            let error = parse_config_text(bad, Path::new("sinumerik.toml")).unwrap_err();
-            assert!(error.to_string().contains("contours"), "{error}");
-        }
-    }
-}

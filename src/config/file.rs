@@ -46,7 +46,8 @@
 //! values are errors, never silently ignored: a misspelt key would otherwise leave a default in place
 //! without anyone noticing.
 
-use super::{Axis, AxisKind, MachineConfig, MachineKind};
+use super::axes::{Axis, AxisKind};
+use super::machine::{MachineConfig, MachineKind};
 use crate::diagnostics::{Code, Severity};
 use serde::Deserialize;
 use std::collections::BTreeMap;

@@ -4,12 +4,12 @@
 use crate::analysis::document::{DocumentAnalysis, LineSource, TextLines};
 use crate::analysis::library::ProgramLibrary;
 use crate::analysis::ProgramKind;
-use crate::cli::preview::{line_columns, write_executed_preview_json, write_preview_json};
-use crate::cli::source_file::read_source_file;
 use crate::config::MachineConfig;
 use crate::ide::execution::{execute_document, DocumentExecution};
 use crate::ide::timing::DocumentTimes;
 use crate::ide::timing::{TimeModel, TimeTotals};
+use crate::io::preview_json::{line_columns, write_executed_preview_json, write_preview_json};
+use crate::io::source_file::read_source_file;
 use crate::lsp::documents::Analysed;
 use serde_json::Value;
 use std::path::Path;

@@ -14,9 +14,9 @@
 //! after releasing it; it must not be called while the caller holds the index's lock.
 
 use crate::analysis::library::{LibraryProgram, ProgramLibrary};
-use crate::cli::source_file::read_source_file;
 use crate::ide::workspace::{call_rank, macro_file_rank, FileKind, IndexedDocument};
 use crate::ide::{DocumentId, WorkspaceIndex};
+use crate::io::source_file::read_source_file;
 use crate::lsp::documents::lock;
 use crate::lsp::server::Shared;
 use std::collections::HashMap;

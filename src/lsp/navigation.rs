@@ -108,7 +108,7 @@ impl<'a> LineTexts<'a> {
             let text = uri
                 .as_ref()
                 .and_then(file_path)
-                .and_then(|path| crate::cli::source_file::read_source_file(&path).ok())
+                .and_then(|path| crate::io::source_file::read_source_file(&path).ok())
                 .map(|source| source.text)
                 .unwrap_or_default();
             (split(&text), None)

@@ -13,11 +13,11 @@
 //! waits for a document's `analysis` lock while holding the index's, and nothing takes the index's
 //! lock twice in one thread (a waiting writer would block the second reader).
 
-use crate::cli::source_file::read_source_file;
 use crate::config::MachineConfig;
 use crate::ide::cross_file_diagnostics::cross_file_diagnostics;
 use crate::ide::symbols::SymbolTable;
 use crate::ide::{DocumentId, WorkspaceIndex};
+use crate::io::source_file::read_source_file;
 use crate::lsp::documents::{lock, Analysed, OpenDocument};
 use crate::lsp::library::LibraryTexts;
 use crate::lsp::server::{file_path, Shared};
