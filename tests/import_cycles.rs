@@ -207,12 +207,10 @@ fn scan(text: &str) -> FileScan {
                     inline.pop();
                 }
             }
-            Token::Punct('#') => {
-                // `#[path = "file.rs"]` applies to the next `mod` declaration.
-                if ident(&tokens, i + 2) == Some("path") {
-                    if let Some((Token::Str(value), _)) = tokens.get(i + 4) {
-                        pending_path = Some(value.clone());
-                    }
+            // `#[path = "file.rs"]` applies to the next `mod` declaration.
+            Token::Punct('#') if ident(&tokens, i + 2) == Some("path") => {
+                if let Some((Token::Str(value), _)) = tokens.get(i + 4) {
+                    pending_path = Some(value.clone());
                 }
             }
             Token::Ident(word) if word == "mod" => {

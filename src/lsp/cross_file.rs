@@ -8,7 +8,7 @@
 use crate::diagnostics::LineDiagnostic;
 use crate::lsp::convert::{diagnostics_json, PositionEncoding};
 use crate::lsp::diagnostics_array::JsonArray;
-use crate::lsp::documents::{lock, Analysed};
+use crate::lsp::locks::lock;
 use crate::lsp::text_document::RopeLineChange;
 use std::sync::Mutex;
 
@@ -74,15 +74,15 @@ impl ExtraDiagnostics {
 pub fn with_extra(
     array: JsonArray,
     extra: &Mutex<ExtraDiagnostics>,
-    analysed: &Analysed,
+    rope: &ropey::Rope,
     encoding: PositionEncoding,
 ) -> (JsonArray, u64) {
     let extra = lock(extra);
     if extra.items.is_empty() {
         return (array, extra.generation);
     }
-    let lines = analysed.lines();
-    let all_ascii = analysed.rope.len_bytes() == analysed.rope.len_chars();
+    let lines = crate::lsp::text_document::RopeLines::new(rope);
+    let all_ascii = rope.len_bytes() == rope.len_chars();
     let line_count = crate::analysis::document::LineSource::line_count(&lines);
     let items: Vec<LineDiagnostic> = extra
         .items

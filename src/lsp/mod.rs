@@ -20,45 +20,35 @@
 //! - `stdio.rs`: the process's stdin and stdout (pipe buffers, the raw output).
 
 mod arriving_open;
-mod call_sites;
-mod code_action;
-mod completion;
+mod capabilities;
+mod configuration;
 mod convert;
 mod cross_file;
 mod diagnostics_array;
 mod diagnostics_limit;
 mod documents;
-mod endpoint_preview;
+mod execution_job;
 mod ext;
 mod framing;
 mod frozen_bytes;
-mod hover;
-mod hover_resolution;
-mod inlay;
+mod handlers;
 mod json_string;
-mod library;
+mod locks;
 mod log;
 mod memory;
-mod modal_state;
-mod navigation;
-mod numbers;
 mod open_texts;
 mod outgoing;
-mod outline;
-mod rewrite_commands;
-mod semantic;
 mod server;
 mod settings;
-mod signature;
+mod state;
 mod stdio;
 mod text_document;
-mod words;
+mod uris;
 mod workspace;
-mod workspace_edit;
 
 pub use convert::PositionEncoding;
 pub use ext::{EndpointPreviewParams, ENDPOINT_PREVIEW_COMMAND};
-pub use rewrite_commands::{FORMAT_COMMAND, RENUMBER_COMMAND};
+pub use handlers::rewrite_commands::{FORMAT_COMMAND, RENUMBER_COMMAND};
 pub use text_document::{apply_changes, DocumentText, LineChange, RopeLineChange, RopeLines};
 
 use tokio::io::{AsyncRead, AsyncWrite};

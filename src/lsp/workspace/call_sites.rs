@@ -9,7 +9,7 @@ use crate::analysis::execution::entry::{CallSiteState, CallerEntry};
 use crate::analysis::ProgramKind;
 use crate::ide::workspace::{program_name_and_kind, FileKind};
 use crate::io::source_file::read_source_file;
-use crate::lsp::server::Shared;
+use crate::lsp::state::Shared;
 use std::path::Path;
 use std::sync::Arc;
 
