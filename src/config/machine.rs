@@ -1,7 +1,10 @@
-//! The machine's data as plain values: axes and their kinds, units, reset G codes, tolerances, limits,
-//! severity overrides; defaults for mill and turn.
+//! The machine configuration as plain data: what the control's machine data would tell about axes, units,
+//! reset state and tolerances, with the defaults of a mill and a lathe.
 
-use super::axes::{Axis, AxisKind};
+use super::contours::ContourOptions;
+use super::cycles::CycleOptions;
+use super::execution::ExecutionOptions;
+use super::timing::TimingOptions;
 use crate::diagnostics::{Code, Severity};
 use std::collections::BTreeMap;
 
@@ -11,6 +14,50 @@ pub enum MachineKind {
     #[default]
     Mill,
     Turn,
+}
+
+/// How an axis moves, which decides the position modifiers it accepts and whether values are lengths.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum AxisKind {
+    /// A linear axis; values are lengths and are converted by G70/G700.
+    Linear,
+    /// A linear axis used for diameter programming (MD20100 `DIAMETER_AX_DEF`).
+    Transverse,
+    /// A rotary axis without modulo range; DC is allowed, ACP/ACN are not.
+    Rotary,
+    /// A rotary axis with modulo 360° range; DC, ACP and ACN are allowed.
+    Modulo,
+}
+
+impl AxisKind {
+    pub fn is_rotary(self) -> bool {
+        matches!(self, AxisKind::Rotary | AxisKind::Modulo)
+    }
+
+    pub fn as_str(self) -> &'static str {
+        match self {
+            AxisKind::Linear => "linear",
+            AxisKind::Transverse => "transverse",
+            AxisKind::Rotary => "rotary",
+            AxisKind::Modulo => "modulo",
+        }
+    }
+}
+
+/// One channel axis, by the name the part program uses (upper case).
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Axis {
+    pub name: String,
+    pub kind: AxisKind,
+}
+
+impl Axis {
+    pub fn new(name: &str, kind: AxisKind) -> Axis {
+        Axis {
+            name: name.to_string(),
+            kind,
+        }
+    }
 }
 
 /// Everything the syntax and analysis layers need to know about the machine.
@@ -57,13 +104,13 @@ pub struct MachineConfig {
     /// ATRANS and G59 write while TRANS and G58 write the coarse part (reference §7.2).
     pub frame_fine_trans: bool,
     /// How the interpreter runs programs (`[execution]`).
-    pub execution: super::execution::ExecutionOptions,
+    pub execution: ExecutionOptions,
     /// How the built-in models of the standard cycles behave (`[cycles]`).
-    pub cycles: super::cycles::CycleOptions,
+    pub cycles: CycleOptions,
     /// How chamfers and roundings are inserted (`[contours]`).
-    pub contours: super::contours::ContourOptions,
+    pub contours: ContourOptions,
     /// How machining time is estimated (`[timing]`).
-    pub timing: super::timing::TimingOptions,
+    pub timing: TimingOptions,
 }
 
 impl Default for MachineConfig {

@@ -4,6 +4,7 @@
 
 import { fileLabel } from '../core/files';
 import { AXES, blockText, FLAG_ASSUMED_X, FLAG_CONDITIONAL, FLAG_CYCLE, holeAxis, insertedName, type PackedToolpath } from '../core/packed';
+import { impossibleCircle } from './geometry';
 
 /** Where a move comes from: its block number, its pass of `passes` (when its block runs more than
  * once) and its line, with the file's name for a move of a called program. */
@@ -71,6 +72,7 @@ export function moveNotes(packed: PackedToolpath, move: number): string[] {
   const notes: string[] = [];
   const made = madeBy(packed, move);
   if (made) notes.push(made);
+  if (impossibleCircle(packed, move)) notes.push('no circle fits these numbers (see the problem on this line): drawn dashed from start to end, marked ✕');
   const flags = packed.flags[move];
   if (flags & FLAG_CONDITIONAL) notes.push('conditional: on a way whose condition the analysis could not decide');
   const assumed = AXES.filter((_, k) => flags & (FLAG_ASSUMED_X << k));

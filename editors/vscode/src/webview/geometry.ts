@@ -4,7 +4,7 @@
 // Plain functions on typed arrays, so that they run in the webview and in unit tests under Node.
 
 import {
-  FLAG_CLOCKWISE, FLAG_CONDITIONAL, FLAG_INSERTED_MASK, FLAG_RAPID, FLAG_UNCERTAIN_X, holeAxis, type PackedToolpath,
+  FLAG_CLOCKWISE, FLAG_CONDITIONAL, FLAG_INSERTED_MASK, FLAG_RAPID, FLAG_UNCERTAIN_X, holeAxis, MOTIONS, type PackedToolpath,
 } from '../core/packed';
 
 export type Plane = 'G17' | 'G18' | 'G19';
@@ -29,6 +29,17 @@ export const KIND_CONDITIONAL = 16;
 export const KIND_INSERTED = 32;
 /** A hole: a drilling move along the axis perpendicular to the plane, drawn as a ring at its position. */
 export const KIND_HOLE = 64;
+/** A circle the server could not construct (a radius too small for its end point, numbers that do
+ * not fit): its end point is known but no arc is, so it is drawn dashed in the error colour with a
+ * marker instead of as a plain straight move. */
+export const KIND_ARC_IMPOSSIBLE = 128;
+
+const CIRCLE_MOTIONS = new Set(['G2', 'G3', 'CIP', 'CT'].map((name) => MOTIONS.indexOf(name as (typeof MOTIONS)[number])));
+
+/** Whether move `i` is a circle without the server's arc: one that cannot exist or is not known. */
+export function impossibleCircle(packed: PackedToolpath, i: number): boolean {
+  return packed.arcOf[i] < 0 && CIRCLE_MOTIONS.has(packed.motion[i]);
+}
 
 /** The radius of a hole's ring on screen, in pixels (the tool's radius is not known). */
 export const HOLE_RADIUS_PX = 4;
@@ -181,6 +192,8 @@ export function project(packed: PackedToolpath, plane: Plane): Projected {
       } else {
         k |= KIND_ARC_UNVERIFIED;
       }
+    } else if (impossibleCircle(packed, i)) {
+      k |= KIND_ARC_IMPOSSIBLE;
     }
     moveIndex[count] = i;
     line[count] = packed.line[i];

@@ -1,6 +1,7 @@
 // The toolpath page's glue: messages from the extension, pointer and keyboard input, and redraws on
 // the next animation frame. The drawing itself is in render.ts, the geometry in geometry.ts, the
-// moves a line causes in selection.ts and the words for a move in describe.ts.
+// moves a line causes in selection.ts and the words for a move in describe.ts; the 3D mode is in
+// mode3d.ts (and view3d.ts, scene3d.ts), the status line's layout in statusLine.ts.
 
 import { fileLabel } from '../core/files';
 import { describeProgramTime, type ProgramTime } from '../core/machiningTime';
@@ -10,8 +11,10 @@ import { assumedEntryState, callPath, moveNotes, moveOrigin, moveTime } from './
 import {
   fitView, guessPlane, KIND_UNCERTAIN, panBy, pickMove, PLANE_NAMES, project, revealPoint, zoomAt, type Plane, type Projected, type View,
 } from './geometry';
-import { LIGHT_STYLES, render, STYLES, type RenderStats } from './render';
-import { fileIndexOf, passesOf, segmentsCausedBy } from './selection';
+import { Mode3d } from './mode3d';
+import { LIGHT_STYLES, render, STYLES, type Palette, type RenderStats } from './render';
+import { fileIndexOf, movesCausedBy, passesOf, segmentsCausedBy } from './selection';
+import { showStatus } from './statusLine';
 
 interface VsCodeApi {
   postMessage(message: FromPage): void;
@@ -25,6 +28,7 @@ const statusLine = document.getElementById('status') as HTMLDivElement;
 const planeSelect = document.getElementById('plane') as HTMLSelectElement;
 const tip = document.getElementById('tip') as HTMLDivElement;
 const context = canvas.getContext('2d')!;
+const modeButtons = { '2d': document.getElementById('mode-2d') as HTMLButtonElement, '3d': document.getElementById('mode-3d') as HTMLButtonElement };
 
 const state = {
   generation: -1,
@@ -74,6 +78,28 @@ function highlight(): Uint32Array {
   return highlighted.segments;
 }
 
+/** The moves of the cursor's line for the 3D view, computed again only when the line or the toolpath changes. */
+const cursorMoves = { packed: null as PackedToolpath | null, file: undefined as string | undefined, line: 0, moves: [] as number[] };
+
+function highlightMoves(): number[] {
+  const { packed, cursorFile, cursorLine } = state;
+  if (cursorMoves.packed !== packed || cursorMoves.file !== cursorFile || cursorMoves.line !== cursorLine) {
+    const moves = cursorLine ? movesCausedBy(packed, fileIndexOf(packed, cursorFile), cursorLine) : [];
+    Object.assign(cursorMoves, { packed, file: cursorFile, line: cursorLine, moves });
+  }
+  return cursorMoves.moves;
+}
+
+/** The palette for the theme: VS Code marks the webview's body with the kind of theme. */
+function palette(): Palette {
+  const light = document.body.classList.contains('vscode-light') || document.body.classList.contains('vscode-high-contrast-light');
+  return light ? LIGHT_STYLES : STYLES;
+}
+
+function backgroundColour(): string {
+  return getComputedStyle(document.body).backgroundColor || '#1e1e1e';
+}
+
 /** How often a move's block runs, remembered per file and line until the toolpath changes. */
 const passCounts = { packed: null as PackedToolpath | null, counts: new Map<number, number>() };
 
@@ -87,9 +113,46 @@ function passes(move: number): number {
   return count;
 }
 
+/** The user clicked a move (in either view): select its line in the editor. */
+function pickedMove(move: number): void {
+  const file = state.packed.file[move];
+  state.picked = move;
+  state.cursorLine = state.packed.line[move];
+  state.cursorFile = file ? state.packed.files[file] : undefined;
+  vscode.postMessage(file ? { type: 'reveal', line: state.cursorLine, file: state.cursorFile } : { type: 'reveal', line: state.cursorLine });
+  scheduleDraw();
+}
+
+const mode3d = new Mode3d(document.getElementById('canvas3d') as HTMLCanvasElement, {
+  packed: () => state.packed,
+  cursorMoves: highlightMoves,
+  palette,
+  background: backgroundColour,
+  describe: (move) => describeMove(move, false),
+  picked: pickedMove,
+  redraw: () => scheduleDraw(),
+  tip,
+});
+
+function setMode(mode: '2d' | '3d'): void {
+  if (!mode3d.setActive(mode === '3d')) {
+    // No WebGL here: the 3D switch says why and the plane view stays.
+    mode = '2d';
+    modeButtons['3d'].disabled = true;
+    modeButtons['3d'].title = mode3d.failure;
+  }
+  canvas.style.display = mode === '3d' ? 'none' : 'block';
+  planeSelect.disabled = mode === '3d';
+  for (const [name, button] of Object.entries(modeButtons)) button.setAttribute('aria-pressed', String(name === mode));
+  tip.style.display = 'none';
+  scheduleDraw();
+}
+modeButtons['2d'].addEventListener('click', () => setMode('2d'));
+modeButtons['3d'].addEventListener('click', () => setMode('3d'));
+
 // For the browser test: the state and the functions it needs to find segments on screen.
 (window as unknown as { toolpathDebug: unknown }).toolpathDebug = {
-  state, highlight, segmentsCausedBy, fileIndexOf, redrawNow: () => draw(),
+  state, highlight, segmentsCausedBy, fileIndexOf, mode3d, setMode, redrawNow: () => draw(),
 };
 
 function chosenPlane(): Plane {
@@ -129,13 +192,16 @@ function resize(): void {
 }
 
 function draw(): void {
-  const background = getComputedStyle(document.body).backgroundColor || '#1e1e1e';
-  const view = state.view ?? fitView(state.projected.bounds, state.width, state.height);
   const started = performance.now();
+  if (mode3d.active) {
+    mode3d.draw();
+    state.renderMs = performance.now() - started;
+    updateStatus(highlight());
+    return;
+  }
+  const view = state.view ?? fitView(state.projected.bounds, state.width, state.height);
   const segments = highlight();
-  // VS Code marks the webview's body with the kind of theme.
-  const light = document.body.classList.contains('vscode-light') || document.body.classList.contains('vscode-high-contrast-light');
-  state.stats = render(context, () => new Path2D(), state.projected, view, state.width, state.height, background, segments, light ? LIGHT_STYLES : STYLES);
+  state.stats = render(context, () => new Path2D(), state.projected, view, state.width, state.height, backgroundColour(), segments, palette());
   state.renderMs = performance.now() - started;
   updateStatus(segments);
 }
@@ -145,38 +211,48 @@ function cursorStatus(segments: Uint32Array): string {
   if (state.picked >= 0 && state.picked < state.packed.count) return moveOrigin(state.packed, state.picked, passes(state.picked));
   const where = state.cursorFile ? `${fileLabel(state.cursorFile)} line ${state.cursorLine}` : `line ${state.cursorLine}`;
   if (fileIndexOf(state.packed, state.cursorFile) < 0) return `${where}: not part of this toolpath`;
-  if (segments.length === 0) return `${where}: no move in this plane`;
-  return segments.length === 1 ? where : `${where}: ${segments.length.toLocaleString('en')} moves`;
+  const count = mode3d.active ? highlightMoves().length : segments.length;
+  if (count === 0) return mode3d.active ? `${where}: no move` : `${where}: no move in this plane`;
+  return count === 1 ? where : `${where}: ${count.toLocaleString('en')} moves`;
 }
 
 function updateStatus(segments: Uint32Array): void {
   if (state.error) {
-    statusLine.textContent = state.error;
+    showStatus(statusLine, [state.error]);
     return;
   }
   const p = state.projected;
+  const space = mode3d.active ? mode3d.paths : null;
   const parts = [
     `${state.title}: ${state.packed.count.toLocaleString('en')} moves` +
       (state.done ? '' : state.progressive ? ' (loading…)' : ` (updating after the edit: ${state.arrived.toLocaleString('en')} moves so far)`),
-    `plane ${p.plane} ${PLANE_NAMES[p.plane]}`,
+    space ? '3D' : `plane ${p.plane} ${PLANE_NAMES[p.plane]}`,
     state.units,
   ];
-  const holes = p.holeSegment.length;
+  const holes = space ? space.holeMove.length : p.holeSegment.length;
   if (holes) parts.push(`${holes.toLocaleString('en')} ${holes === 1 ? 'hole' : 'holes'}`);
-  if (p.hidden) parts.push(`${p.hidden.toLocaleString('en')} not drawn (position unknown in this plane)`);
-  if (state.stats?.thinned) parts.push(`${state.stats.thinned.toLocaleString('en')} thinned at this zoom`);
-  if (state.stats?.arcsUnverified) parts.push(`${state.stats.arcsUnverified} arcs drawn straight (centre does not fit)`);
+  if (space?.hidden) parts.push(`${space.hidden.toLocaleString('en')} not drawn (position unknown)`);
+  else if (!space && p.hidden) parts.push(`${p.hidden.toLocaleString('en')} not drawn (position unknown in this plane)`);
+  const thinned = space ? (mode3d.view?.stats.thinned ?? 0) : (state.stats?.thinned ?? 0);
+  if (thinned) parts.push(`${thinned.toLocaleString('en')} thinned at this zoom`);
+  const unverified = space ? space.arcsUnverified : (state.stats?.arcsUnverified ?? 0);
+  if (unverified) parts.push(`${unverified} arcs drawn straight (centre does not fit)`);
+  const impossible = space ? space.impossible : (state.stats?.impossible ?? 0);
+  if (impossible) parts.push(`${impossible} ${impossible === 1 ? 'circle' : 'circles'} that cannot exist (dashed, ✕)`);
   if (p.conditional) parts.push(`${p.conditional.toLocaleString('en')} conditional (faded)`);
   const assumed = assumedEntryState(state.assumed);
   if (assumed) parts.push(assumed);
   if (state.time) parts.push(describeProgramTime(state.time));
   if (state.cursorLine) parts.push(cursorStatus(segments));
-  statusLine.textContent = parts.join(' · ');
+  showStatus(statusLine, parts);
 }
 
 function describe(segment: number): string {
-  const p = state.projected;
-  const move = p.moveIndex[segment];
+  return describeMove(state.projected.moveIndex[segment], (state.projected.kind[segment] & KIND_UNCERTAIN) !== 0);
+}
+
+/** The tooltip of a move; `uncertainHere`: a coordinate the view shows may not be the control's. */
+function describeMove(move: number, uncertainHere: boolean): string {
   const packed = state.packed;
   // An axis left out of the end point is unknown when the server names it uncertain; otherwise the
   // machine does not have it.
@@ -192,7 +268,8 @@ function describe(segment: number): string {
   const calls = callPath(packed, move);
   if (calls) lines.push(calls);
   lines.push(...moveNotes(packed, move));
-  if (p.kind[segment] & KIND_UNCERTAIN) lines.push('uncertain: the control may take another path here');
+  const uncertain = uncertainHere || (mode3d.active && (packed.flags[move] & (FLAG_UNCERTAIN_X * 7)) !== 0);
+  if (uncertain) lines.push('uncertain: the control may take another path here');
   return lines.join('\n');
 }
 
@@ -207,6 +284,7 @@ window.addEventListener('message', (event: MessageEvent<ToPage>) => {
       if (message.title !== state.title) {
         state.view = null;
         state.userMoved = false;
+        mode3d.forgetUserView();
       }
       state.generation = message.generation;
       state.picked = -1;
@@ -274,6 +352,8 @@ planeSelect.addEventListener('change', () => {
 
 function fit(): void {
   state.view = state.projected.bounds ? fitView(state.projected.bounds, state.width, state.height) : null;
+  state.userMoved = false;
+  mode3d.fit();
   scheduleDraw();
 }
 document.getElementById('fit')!.addEventListener('click', fit);
@@ -315,15 +395,7 @@ canvas.addEventListener('pointerup', (event) => {
   if (wasDrag || !state.view) return;
   // A click on a hole's ring picks the hole, whose line is the cycle's call or positioning block.
   const segment = pickMove(state.projected, state.view, event.offsetX, event.offsetY);
-  if (segment >= 0) {
-    const move = state.projected.moveIndex[segment];
-    const file = state.packed.file[move];
-    state.picked = move;
-    state.cursorLine = state.packed.line[move];
-    state.cursorFile = file ? state.packed.files[file] : undefined;
-    vscode.postMessage(file ? { type: 'reveal', line: state.cursorLine, file: state.cursorFile } : { type: 'reveal', line: state.cursorLine });
-    scheduleDraw();
-  }
+  if (segment >= 0) pickedMove(state.projected.moveIndex[segment]);
 });
 canvas.addEventListener('pointerleave', () => {
   tip.style.display = 'none';
@@ -340,7 +412,11 @@ canvas.addEventListener(
   { passive: false },
 );
 window.addEventListener('keydown', (event) => {
-  if (!state.view) return;
+  if (event.key === 'f' || event.key === 'F') {
+    fit();
+    return;
+  }
+  if (!state.view || mode3d.active) return;
   const step = 40;
   const keys: Record<string, () => View> = {
     '+': () => zoomAt(state.view!, 1.25, state.width / 2, state.height / 2),
@@ -351,20 +427,20 @@ window.addEventListener('keydown', (event) => {
     ArrowUp: () => panBy(state.view!, 0, step),
     ArrowDown: () => panBy(state.view!, 0, -step),
   };
-  if (event.key === 'f' || event.key === 'F') {
-    fit();
-  } else if (keys[event.key]) {
+  if (keys[event.key]) {
     state.userMoved = true;
     state.view = keys[event.key]();
     scheduleDraw();
   }
 });
 
+// A resize (the panel below opening, the editor group resized) fits the drawing again unless the
+// user panned or zoomed; then their view stays where it was.
 new ResizeObserver(() => {
-  const hadData = state.view !== null;
   resize();
-  if (hadData) scheduleDraw();
-  else fit();
+  mode3d.resize(state.width, state.height);
+  if (!state.userMoved) state.view = state.projected.bounds ? fitView(state.projected.bounds, state.width, state.height) : null;
+  scheduleDraw();
 }).observe(box);
 resize();
 vscode.postMessage({ type: 'ready' });

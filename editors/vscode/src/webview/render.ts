@@ -6,7 +6,7 @@
 // line) in the feed's colour, a little wider; a hole is a ring at its position.
 
 import {
-  CHUNK, HOLE_RADIUS_PX, KIND_ARC, KIND_ARC_UNVERIFIED, KIND_CONDITIONAL, KIND_HOLE, KIND_INSERTED, KIND_RAPID, KIND_UNCERTAIN,
+  CHUNK, HOLE_RADIUS_PX, KIND_ARC, KIND_ARC_IMPOSSIBLE, KIND_ARC_UNVERIFIED, KIND_CONDITIONAL, KIND_HOLE, KIND_INSERTED, KIND_RAPID, KIND_UNCERTAIN,
   toScreen, type Projected, type View,
 } from './geometry';
 
@@ -33,10 +33,11 @@ export interface Style {
   dash: number[];
 }
 
-export type Palette = Record<'feed' | 'rapid' | 'uncertainFeed' | 'uncertainRapid' | 'highlight' | 'inserted', Style>;
+export type Palette = Record<'feed' | 'rapid' | 'uncertainFeed' | 'uncertainRapid' | 'highlight' | 'inserted' | 'impossible', Style>;
 
-/** For dark themes: feed, rapid, both when a plane coordinate is uncertain, the cursor's block, and an
- * inserted rounding or chamfer at feed. */
+/** For dark themes: feed, rapid, both when a plane coordinate is uncertain, the cursor's block, an
+ * inserted rounding or chamfer at feed, and a circle that cannot exist (VS Code's error colour, in
+ * short dashes unlike the rapid's long ones, with a cross on its middle). */
 export const STYLES: Palette = {
   feed: { colour: '#3b8eea', width: 1.5, dash: [] },
   rapid: { colour: '#e05252', width: 1.5, dash: [6, 4] },
@@ -44,6 +45,7 @@ export const STYLES: Palette = {
   uncertainRapid: { colour: '#d7a600', width: 1.5, dash: [6, 3, 2, 3] },
   highlight: { colour: '#ffd500', width: 4, dash: [] },
   inserted: { colour: '#3b8eea', width: 3, dash: [] },
+  impossible: { colour: '#f14c4c', width: 2, dash: [3, 3] },
 };
 
 /** The same styles in darker colours, for light themes. */
@@ -54,11 +56,13 @@ export const LIGHT_STYLES: Palette = {
   uncertainRapid: { ...STYLES.uncertainRapid, colour: '#9a6b00' },
   highlight: { ...STYLES.highlight, colour: '#e07000' },
   inserted: { ...STYLES.inserted, colour: '#0b5cad' },
+  impossible: { ...STYLES.impossible, colour: '#e51400' },
 };
 
 export type StyleName = keyof Palette;
 
 export function styleOf(kind: number): StyleName {
+  if (kind & KIND_ARC_IMPOSSIBLE) return 'impossible';
   if (kind & KIND_UNCERTAIN) return kind & KIND_RAPID ? 'uncertainRapid' : 'uncertainFeed';
   if (kind & KIND_RAPID) return 'rapid';
   return kind & KIND_INSERTED ? 'inserted' : 'feed';
@@ -87,7 +91,12 @@ export interface RenderStats {
   arcsUnverified: number;
   /** Hole rings drawn (those on screen, at most one per cell of the ring's radius). */
   holes: number;
+  /** Circles that cannot exist, drawn dashed and marked. */
+  impossible: number;
 }
+
+/** Half the size of the cross on the middle of a circle that cannot exist, in pixels. */
+export const IMPOSSIBLE_MARK_PX = 5;
 
 /** One path per style with its own pen, so that interleaved styles each thin on their own. */
 class Pen {
@@ -180,10 +189,10 @@ export function render(
   ctx.clearRect(0, 0, width, height);
   ctx.fillStyle = background;
   ctx.fillRect(0, 0, width, height);
-  const stats: RenderStats = { visited: 0, drawn: 0, thinned: 0, culledChunks: 0, arcsUnverified: 0, holes: 0 };
+  const stats: RenderStats = { visited: 0, drawn: 0, thinned: 0, culledChunks: 0, arcsUnverified: 0, holes: 0, impossible: 0 };
   // One pen per style and per faded or not: index 2 * style + (conditional ? 1 : 0), looked up by kind.
   const names = Object.keys(palette) as StyleName[];
-  const penOfKind = new Uint8Array(KIND_HOLE * 2);
+  const penOfKind = new Uint8Array(KIND_ARC_IMPOSSIBLE * 2);
   penOfKind.forEach((_, kind) => (penOfKind[kind] = 2 * names.indexOf(styleOf(kind)) + (kind & KIND_CONDITIONAL ? 1 : 0)));
   const pens: (Pen | undefined)[] = [];
   const penFor = (kind: number) => (pens[penOfKind[kind]] ??= new Pen(newPath()));
@@ -194,6 +203,7 @@ export function render(
   const top = view.offsetY / view.scale + pad;
   const bottom = (view.offsetY - height) / view.scale - pad;
   const chunks = p.chunkBox.length / 4;
+  const impossible: number[] = [];
   for (let c = 0; c < chunks; c++) {
     const box = c * 4;
     if (p.chunkBox[box] > right || p.chunkBox[box + 2] < left || p.chunkBox[box + 1] > top || p.chunkBox[box + 3] < bottom) {
@@ -203,8 +213,10 @@ export function render(
     for (let s = c * CHUNK; s < Math.min(p.count, (c + 1) * CHUNK); s++) {
       stats.visited++;
       if (p.kind[s] & KIND_ARC_UNVERIFIED) stats.arcsUnverified++;
+      if (p.kind[s] & KIND_ARC_IMPOSSIBLE) impossible.push(s);
       if (addSegment(p, view, s, penFor(p.kind[s]))) stats.drawn++;
-      else stats.thinned++;
+      // A move along the axis across the plane has no length here: it is not thinned, there is nothing to draw.
+      else if (p.x0[s] !== p.x1[s] || p.y0[s] !== p.y1[s]) stats.thinned++;
     }
   }
   pens.forEach((pen, index) => {
@@ -240,6 +252,23 @@ export function render(
       const [ex, ey] = toScreen(view, p.x1[highlight[i]], p.y1[highlight[i]]);
       ctx.fillRect(ex - 3, ey - 3, 6, 6);
     }
+  }
+  // The crosses last, so that a highlighted circle that cannot exist keeps its mark.
+  stats.impossible = impossible.length;
+  if (impossible.length) {
+    const marks = newPath();
+    for (const s of impossible) {
+      const [mx, my] = toScreen(view, (p.x0[s] + p.x1[s]) / 2, (p.y0[s] + p.y1[s]) / 2);
+      const r = IMPOSSIBLE_MARK_PX;
+      marks.moveTo(mx - r, my - r);
+      marks.lineTo(mx + r, my + r);
+      marks.moveTo(mx - r, my + r);
+      marks.lineTo(mx + r, my - r);
+    }
+    ctx.strokeStyle = palette.impossible.colour;
+    ctx.lineWidth = 2;
+    ctx.setLineDash([]);
+    ctx.stroke(marks);
   }
   return stats;
 }

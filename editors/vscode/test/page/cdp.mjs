@@ -6,13 +6,14 @@ export function findChromium() {
   return process.env.CHROMIUM_BIN || 'chromium';
 }
 
-export async function launch({ width = 900, height = 640 } = {}) {
+/** `args`: more Chromium switches (e.g. `--disable-webgl`). */
+export async function launch({ width = 900, height = 640, args = [] } = {}) {
   const browser = spawn(
     findChromium(),
     [
       '--headless=new', '--remote-debugging-pipe', '--no-sandbox', '--disable-gpu', '--no-first-run',
       '--disable-extensions', '--hide-scrollbars', '--mute-audio', '--allow-file-access-from-files',
-      `--window-size=${width},${height}`, 'about:blank',
+      `--window-size=${width},${height}`, ...args, 'about:blank',
     ],
     { stdio: ['ignore', 'ignore', 'pipe', 'pipe', 'pipe'] },
   );
@@ -88,9 +89,13 @@ export async function launch({ width = 900, height = 640 } = {}) {
       if (result.exceptionDetails) throw new Error(`in page: ${result.exceptionDetails.exception?.description ?? result.exceptionDetails.text}`);
       return result.result.value;
     },
-    /** A left-button press, move with the button held, or release. */
-    async mouse(type, x, y) {
-      await call('Input.dispatchMouseEvent', { type, x, y, button: 'left', clickCount: 1, buttons: type === 'mouseReleased' ? 0 : 1 });
+    /** A left-button press, move with the button held, or release; `modifiers` as CDP has them (8: shift). */
+    async mouse(type, x, y, modifiers = 0) {
+      await call('Input.dispatchMouseEvent', { type, x, y, modifiers, button: 'left', clickCount: 1, buttons: type === 'mouseReleased' ? 0 : 1 });
+    },
+    async key(key) {
+      await call('Input.dispatchKeyEvent', { type: 'keyDown', key, text: key });
+      await call('Input.dispatchKeyEvent', { type: 'keyUp', key });
     },
     /** A move without a button, as when hovering. */
     async hover(x, y) {

@@ -3,7 +3,7 @@
 
 import { ToolpathLoader } from '../../src/core/loader';
 import type { FromPage, PlaneName, ToPage } from '../../src/core/messages';
-import { allocatePacked, FLAG_CYCLE, FLAG_HOLE_SHIFT, FLAG_RAPID } from '../../src/core/packed';
+import { allocatePacked, FLAG_CYCLE, FLAG_HOLE_SHIFT, FLAG_RAPID, type PackedToolpath } from '../../src/core/packed';
 
 const sent: FromPage[] = [];
 (window as unknown as Record<string, unknown>).acquireVsCodeApi = () => ({
@@ -80,6 +80,13 @@ const harness = {
     const g = ++generation;
     post({ type: 'reset', generation: g, title: `holes-${count}`, units: 'mm', plane: 'G17' });
     post({ type: 'append', generation: g, packed: p });
+    post({ type: 'done', generation: g });
+  },
+  /** A packed toolpath sent as one part, as the extension sends a loaded program. */
+  loadPacked(packed: PackedToolpath, title: string) {
+    const g = ++generation;
+    post({ type: 'reset', generation: g, title, units: 'mm', plane: 'G17' });
+    post({ type: 'append', generation: g, packed });
     post({ type: 'done', generation: g });
   },
   /** The editor's cursor on a line of the previewed file, or of `file` (a URI). */

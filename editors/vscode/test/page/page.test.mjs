@@ -6,16 +6,15 @@
 // moves. Set UPDATE_SCREENSHOT=1 to rewrite the baselines and docs/toolpath-preview.png.
 import assert from 'node:assert/strict';
 import * as fs from 'node:fs';
-import { createRequire } from 'node:module';
 import * as path from 'node:path';
 import { after, before, test } from 'node:test';
-import { fileURLToPath, pathToFileURL } from 'node:url';
+import { fileURLToPath } from 'node:url';
 import { launch } from './cdp.mjs';
+import {
+  BACKGROUND, canvasColours, covers, FEED, HIGHLIGHT, hex, near, RAPID, root, UNCERTAIN, until as untilIn, writePage,
+} from './common.mjs';
 
 const here = path.dirname(fileURLToPath(import.meta.url));
-const root = path.resolve(here, '..', '..');
-const require = createRequire(import.meta.url);
-const { toolpathHtml } = require(path.join(root, 'out', 'src', 'webview', 'html.js'));
 const baselineFile = path.join(here, 'toolpath.baseline.json');
 const contoursBaselineFile = path.join(here, 'contours.baseline.json');
 const docsScreenshot = path.resolve(root, '..', '..', 'docs', 'toolpath-preview.png');
@@ -23,22 +22,8 @@ const update = process.env.UPDATE_SCREENSHOT === '1';
 
 let page;
 
-function writePage() {
-  const nonce = 'test-nonce';
-  let html = toolpathHtml({ scriptUri: '../../dist/webview.js', cspSource: 'file:', nonce, title: 'demo_mill.mpf' });
-  html = html.replace(`<script nonce="${nonce}"`, `<script nonce="${nonce}" src="harness.js"></script>\n<script nonce="${nonce}"`);
-  const file = path.join(root, 'out', 'page', 'index.html');
-  fs.writeFileSync(file, html);
-  return pathToFileURL(file).href;
-}
-
 async function until(expression, what, timeoutMs = 20000) {
-  const started = Date.now();
-  while (Date.now() - started < timeoutMs) {
-    if (await page.evaluate(expression)) return;
-    await new Promise((resolve) => setTimeout(resolve, 25));
-  }
-  throw new Error(`timed out waiting for ${what}; page said: ${page.consoleMessages.join(' | ')}`);
+  return untilIn(page, expression, what, timeoutMs);
 }
 
 /** Screen position of a plane point in the page's current view. */
@@ -54,32 +39,11 @@ async function canvasOrigin() {
 
 /** Colours (as [r, g, b]) in a square of `radius` pixels around a canvas position. */
 async function colours(x, y, radius = 2) {
-  return page.evaluate(`(() => {
-    const ctx = document.getElementById('canvas').getContext('2d');
-    const data = ctx.getImageData(${Math.round(x)} - ${radius}, ${Math.round(y)} - ${radius}, ${2 * radius + 1}, ${2 * radius + 1}).data;
-    const out = [];
-    for (let i = 0; i < data.length; i += 4) out.push([data[i], data[i + 1], data[i + 2]]);
-    return out;
-  })()`);
+  return canvasColours(page, 'canvas', x, y, radius);
 }
 
-function hex(colour) {
-  const n = parseInt(colour.slice(1), 16);
-  return [(n >> 16) & 255, (n >> 8) & 255, n & 255];
-}
-
-function near(a, b, tolerance = 40) {
-  return Math.abs(a[0] - b[0]) + Math.abs(a[1] - b[1]) + Math.abs(a[2] - b[2]) <= tolerance;
-}
-
-const FEED = hex('#3b8eea');
-const RAPID = hex('#e05252');
-const UNCERTAIN = hex('#d7a600');
-const HIGHLIGHT = hex('#ffd500');
-const BACKGROUND = hex('#1e1e1e');
-
-async function hasColour(x, y, colour, radius = 2) {
-  return (await colours(x, y, radius)).some((c) => near(c, colour));
+async function hasColour(x, y, colour, radius = 2, under = BACKGROUND) {
+  return (await colours(x, y, radius)).some((c) => covers(c, colour, under));
 }
 
 before(async () => {
@@ -223,7 +187,7 @@ test('the drawing matches the committed screenshot outline', async () => {
 test('in a light theme the page draws with the light palette', async () => {
   await page.evaluate('document.body.classList.add("vscode-light"); document.body.style.background = "#ffffff"; toolpathDebug.redrawNow()');
   const [sx, sy] = await screen(30, 0);
-  assert.ok(await hasColour(sx, sy, hex('#0b5cad')), 'dark blue feed on white');
+  assert.ok(await hasColour(sx, sy, hex('#0b5cad'), 2, [255, 255, 255]), 'dark blue feed on white');
   const [bx, by] = await screen(22, 42);
   assert.ok((await colours(bx, by, 2)).every((c) => near(c, [255, 255, 255], 10)), 'the theme background');
   await page.evaluate('document.body.classList.remove("vscode-light"); document.body.style.background = ""; toolpathDebug.redrawNow()');

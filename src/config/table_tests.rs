@@ -1,9 +1,7 @@
-//! Tests of the configuration's own tables (`[contours]`, `[cycles]`) as `sinumerik.toml` gives them:
-//! they read text through the file parser, which itself reads those tables, so they live apart from
-//! both.
+//! Tests of the option tables (`[contours]`, `[cycles]`) read through the whole configuration file.
 
-use super::cycles::{CycleOptions, GridOrder, RowOrder};
-use super::file::parse_config_text;
+use crate::config::cycles::*;
+use crate::config::parse_config_text;
 use std::path::Path;
 
 #[test]
