@@ -2,22 +2,18 @@
 //! it (`analysis`, `syntax`, `config`, `diagnostics`) speaks in lines, byte spans and plain values;
 //! this module converts at its edge (`convert.rs`).
 //!
-//! - `server.rs`: the `LanguageServer` implementation; dispatch, settings, capabilities.
-//! - `documents.rs`: open documents, their analysis on snapshots, the worker that publishes.
-//! - `text_document.rs`: rope text, `apply_changes`, the lines an edit touched, `LineSource`.
-//! - `convert.rs`: positions in the negotiated encoding, spans to ranges, diagnostics.
-//! - `diagnostics_array.rs`: the published diagnostics' JSON, reused by the next publication.
-//! - `diagnostics_limit.rs`: the findings published under the `maxDiagnostics` setting.
-//! - `hover.rs`, `inlay.rs`, `code_action.rs`, `endpoint_preview.rs`: one feature each.
-//! - `words.rs`: where the words of a block are, for the cursor.
-//! - `settings.rs`: settings and each document's machine configuration; `ext.rs`: own protocol types.
-//! - `library.rs`: the programs a document calls, found through the workspace index.
-//! - `outgoing.rs`: all output; the server's own notifications serialized straight to text.
-//! - `log.rs`: logging and slow-handler reports; `memory.rs`: the allocator's options.
-//! - `framing.rs`: drops malformed messages before they reach the framework's reader.
-//! - `arriving_open.rs`: a large `didOpen` read while it arrives; `open_texts.rs`: the texts of large
-//!   `didOpen` messages, which the guard reads itself; `json_string.rs` unescapes them into ropes.
-//! - `stdio.rs`: the process's stdin and stdout (pipe buffers, the raw output).
+//! - `server.rs`: the `LanguageServer` implementation, which only dispatches; `state.rs`: the state
+//!   it shares with its tasks; `capabilities.rs`: `initialize`; `configuration.rs`: the settings.
+//! - `handlers/`: one file per feature, converting the core's answers to LSP types.
+//! - `workspace/`: the workspace index, its updates, the libraries of open documents.
+//! - `documents.rs`: open documents, their analysis on snapshots, the worker that publishes;
+//!   `execution_job.rs`: the run of a revision; `text_document.rs`: rope text, `apply_changes`;
+//!   `convert.rs`: positions in the negotiated encoding, spans to ranges, diagnostics;
+//!   `cross_file.rs`: the W3xx findings joined to the published diagnostics.
+//! - `diagnostics_array.rs`, `diagnostics_limit.rs`: the published diagnostics' JSON.
+//! - `outgoing.rs`, `log.rs`, `framing.rs`, `arriving_open.rs`, `open_texts.rs`, `json_string.rs`,
+//!   `stdio.rs`, `frozen_bytes.rs`, `memory.rs`: the transport (input guard, output, stdio).
+//! - `settings.rs`, `ext.rs`, `uris.rs`, `locks.rs`: settings, own protocol types, URIs, locks.
 
 mod arriving_open;
 mod capabilities;
