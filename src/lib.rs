@@ -2,7 +2,9 @@
 //!
 //! Layers, from the bottom: `diagnostics` (shared vocabulary), `config` (machine data), `syntax`
 //! (lexer, parser, syntax diagnostics), `analysis` (modal state, resolved positions, semantic
-//! diagnostics), `cli` (the command line), `lsp` (the language server). See ARCHITECTURE.md.
+//! diagnostics), `ide` (the language features), `io` (reading program files, the preview's JSON), then
+//! side by side `cli` (the command line) and `lsp` (the language server), which `main.rs` chooses
+//! between. See ARCHITECTURE.md.
 
 // `unsafe` lives in one module, `lsp/transport/sys.rs`, which alone is allowed it.
 #![deny(unsafe_code)]
@@ -12,5 +14,6 @@ pub mod cli;
 pub mod config;
 pub mod diagnostics;
 pub mod ide;
+pub mod io;
 pub mod lsp;
 pub mod syntax;

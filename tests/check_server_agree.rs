@@ -17,7 +17,7 @@ mod lsp_client;
 
 use lsp_client::{file_uri, temp_folder, TestClient};
 use serde_json::{json, Value};
-use sinumerik_lsp::cli::source_file::read_source_file;
+use sinumerik_lsp::io::source_file::read_source_file;
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 use std::sync::Arc;

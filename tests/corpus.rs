@@ -14,12 +14,12 @@
 //! `cargo test --test corpus -- --nocapture` shows a one-line summary of the run.
 
 use sinumerik_lsp::analysis::{analyze_program, ProgramKind};
-use sinumerik_lsp::cli::source_file::read_source_file;
 use sinumerik_lsp::config::MachineConfig;
 use sinumerik_lsp::diagnostics::{Code, LineDiagnostic, Severity};
 use sinumerik_lsp::ide::cross_file_diagnostics::cross_file_diagnostics;
 use sinumerik_lsp::ide::workspace::{call_rank, program_name_and_kind, FileKind};
 use sinumerik_lsp::ide::{TextLines, WorkspaceIndex};
+use sinumerik_lsp::io::source_file::read_source_file;
 use sinumerik_lsp::syntax::lines::line_ranges;
 use std::collections::BTreeMap;
 use std::fmt::Write as _;

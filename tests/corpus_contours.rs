@@ -16,9 +16,9 @@ use sinumerik_lsp::analysis::execution::{
 };
 use sinumerik_lsp::analysis::library::MemoryLibrary;
 use sinumerik_lsp::analysis::ProgramKind;
-use sinumerik_lsp::cli::source_file::read_source_file;
 use sinumerik_lsp::config::MachineConfig;
 use sinumerik_lsp::diagnostics::Severity;
+use sinumerik_lsp::io::source_file::read_source_file;
 use sinumerik_lsp::syntax::lines::line_ranges;
 use std::collections::HashMap;
 

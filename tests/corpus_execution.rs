@@ -14,8 +14,8 @@ use sinumerik_lsp::analysis::axis_lookup::AxisLookup;
 use sinumerik_lsp::analysis::execution::{execute_collecting, ExecutedMove, ExecutionOptions};
 use sinumerik_lsp::analysis::library::MemoryLibrary;
 use sinumerik_lsp::analysis::ProgramKind;
-use sinumerik_lsp::cli::source_file::read_source_file;
 use sinumerik_lsp::config::MachineConfig;
+use sinumerik_lsp::io::source_file::read_source_file;
 use sinumerik_lsp::syntax::ast::{
     AddressKind, AddressWord, Block, ExprKind, Extension, NamedAddress, Statement,
 };

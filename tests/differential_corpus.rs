@@ -46,7 +46,7 @@ fn programs() -> (Vec<(String, Vec<String>, bool)>, usize) {
                 continue;
             }
             let bytes = std::fs::read(&path).expect("a program can be read");
-            let text = sinumerik_lsp::cli::source_file::decode_source(&bytes).text;
+            let text = sinumerik_lsp::io::source_file::decode_source(&bytes).text;
             let mut lines = seeds::split_lines(&text);
             lines.truncate(MAX_LINES);
             if lines.is_empty() {

@@ -8,8 +8,8 @@
 
 use sinumerik_lsp::analysis::document::{DocumentAnalysis, TextLines};
 use sinumerik_lsp::analysis::{diagnose_program, ProgramKind};
-use sinumerik_lsp::cli::source_file::decode_source;
 use sinumerik_lsp::config::MachineConfig;
+use sinumerik_lsp::io::source_file::decode_source;
 use std::io::Read;
 use std::path::PathBuf;
 use std::process::{Command, Stdio};

@@ -7,9 +7,9 @@
 //! stack per level in debug builds.
 
 use sinumerik_lsp::analysis::{diagnose_program, ProgramKind};
-use sinumerik_lsp::cli::source_file::{decode_source, decode_windows_1252, SourceEncoding};
 use sinumerik_lsp::config::MachineConfig;
 use sinumerik_lsp::diagnostics::{Code, Diagnostic, LineDiagnostic, Span};
+use sinumerik_lsp::io::source_file::{decode_source, decode_windows_1252, SourceEncoding};
 use sinumerik_lsp::syntax::ast::{
     AddressKind, Expr, ExprKind, JumpTarget, Statement, StructureKeyword, ValueExpr,
 };

@@ -27,7 +27,7 @@ fn hostile_programs() -> Vec<String> {
         })
         .collect();
     vec![
-        sinumerik_lsp::cli::source_file::decode_windows_1252(&garbage),
+        sinumerik_lsp::io::source_file::decode_windows_1252(&garbage),
         "PROC ÄÖÜ(REAL 1A, VAR, INT[ ) ; ünïcödé\nDEF DEF DEF\nDEFINE AS AS\nEXTERN (\nGOTOF\nGOTOB N\nCASE OF GOTOF\nIF (((\nENDIF ENDIF\n".to_string(),
         "N10 GOTOF N10\nN10 GOTOB N10\n:0 GOTO :0\nL0 P\nCALL \"\"\nCALL \"/_N_\"\nPCALL /\nMCALL\nT=\"😀\" M6\n$R[ R[ R[1\n".to_string(),
         format!("N1 G0 X{}\nLBL{}: GOTOB LBL{}\n", "9".repeat(5000), "A".repeat(3000), "A".repeat(3000)),

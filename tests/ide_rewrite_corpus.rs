@@ -6,10 +6,10 @@
 //! When the corpus is absent, the tests print a message and pass.
 
 use sinumerik_lsp::analysis::{visit_moves, Move, ProgramKind};
-use sinumerik_lsp::cli::source_file::read_source_file;
 use sinumerik_lsp::config::MachineConfig;
 use sinumerik_lsp::ide::format::{format_text, FormatOptions};
 use sinumerik_lsp::ide::renumber::{renumber_text, NumberingMode, RenumberOptions};
+use sinumerik_lsp::io::source_file::read_source_file;
 use sinumerik_lsp::syntax::lexer::{lex_line_into, Token};
 use sinumerik_lsp::syntax::lines::line_ranges;
 use std::fmt::Write as _;

@@ -12,7 +12,7 @@
 mod corpus_files;
 
 use corpus_files::{corpus_dir, glob_matches, known_invalid, program_files};
-use sinumerik_lsp::cli::source_file::read_source_file;
+use sinumerik_lsp::io::source_file::read_source_file;
 use std::collections::{BTreeMap, HashSet};
 use std::path::Path;
 use std::process::Command;

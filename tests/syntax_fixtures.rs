@@ -17,9 +17,9 @@
 //! is written on a normal run too, but the test then fails and says so, so that a snapshot is never
 //! accepted without somebody reading it.
 
-use sinumerik_lsp::cli::source_file::read_source_file;
 use sinumerik_lsp::config::MachineConfig;
 use sinumerik_lsp::diagnostics::{Code, LineDiagnostic, Span};
+use sinumerik_lsp::io::source_file::read_source_file;
 use sinumerik_lsp::syntax::check_program;
 use sinumerik_lsp::syntax::lines::line_ranges;
 use std::collections::BTreeSet;

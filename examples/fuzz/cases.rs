@@ -76,7 +76,7 @@ impl Case {
         let bytes = std::fs::read(path)?;
         Ok(match DocumentCase::from_bytes(&bytes) {
             Some(case) => Case::Document(case),
-            None => Case::Text(sinumerik_lsp::cli::source_file::decode_source(&bytes).text),
+            None => Case::Text(sinumerik_lsp::io::source_file::decode_source(&bytes).text),
         })
     }
 }

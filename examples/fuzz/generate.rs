@@ -592,5 +592,5 @@ pub fn mutate_bytes(random: &mut Random, text: &str) -> String {
             ),
         }
     }
-    sinumerik_lsp::cli::source_file::decode_source(&bytes).text
+    sinumerik_lsp::io::source_file::decode_source(&bytes).text
 }

@@ -79,7 +79,7 @@ pub fn files_below(dir: &Path) -> Vec<PathBuf> {
 fn read_seed(path: &Path) -> Option<Seed> {
     let mut bytes = fs::read(path).ok()?;
     bytes.truncate(MAX_SEED_BYTES);
-    let text = sinumerik_lsp::cli::source_file::decode_source(&bytes).text;
+    let text = sinumerik_lsp::io::source_file::decode_source(&bytes).text;
     let lines = split_lines(&text);
     (!lines.is_empty()).then_some(Seed {
         lines,

@@ -3,12 +3,12 @@
 
 use super::args::CheckOptions;
 use super::check_index::CheckIndexes;
+use super::exit_codes::{EXIT_ERRORS_FOUND, EXIT_OK, EXIT_TROUBLE};
 use super::formats::{self, FileFindings, RunSummary};
 use super::library::{FolderLibrary, ProgramFiles};
 use super::report::{ProgramLines, SeverityCounts};
-use super::source_file::read_source_file;
-use super::{EXIT_ERRORS_FOUND, EXIT_OK, EXIT_TROUBLE};
 use crate::config::{discover_config_file, load_config_file, MachineConfig};
+use crate::io::source_file::read_source_file;
 use std::collections::HashMap;
 use std::fmt::Display;
 use std::fs;

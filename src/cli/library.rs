@@ -8,9 +8,9 @@
 //! whichever program asks, and from several threads at a time. [`FolderLibrary`] is one program's view
 //! of it (its folders in lookup order) and implements the analysis's [`ProgramLibrary`].
 
-use super::source_file::read_source_file;
 use crate::analysis::library::{LibraryProgram, ProgramLibrary};
 use crate::ide::workspace::{call_rank, macro_file_rank, program_name_and_kind, FileKind};
+use crate::io::source_file::read_source_file;
 use std::collections::{HashMap, HashSet};
 use std::fs;
 use std::path::{Component, Path, PathBuf};

@@ -1,17 +1,17 @@
 //! `preview`: the resolved moves of one program as JSON or CSV, for tools and for the toolpath view.
 
 use super::args::{PreviewFormat, PreviewOptions};
+use super::exit_codes::{EXIT_ERRORS_FOUND, EXIT_OK, EXIT_TROUBLE};
 use super::library::ProgramFiles;
-use super::preview_json::{self, round};
 use super::report::ProgramLines;
-use super::source_file::read_source_file;
-use super::{EXIT_ERRORS_FOUND, EXIT_OK, EXIT_TROUBLE};
 use crate::analysis::execution::{execute, ExecutedMove, ExecutionOptions};
 use crate::analysis::library::ProgramLibrary;
 use crate::analysis::simulation::time::{TimeModel, TimeTotals};
-use crate::analysis::{diagnose_program, Move, ProgramKind};
+use crate::analysis::{diagnose_program, ProgramKind};
 use crate::config::{discover_config_file, load_config_file, MachineConfig};
-use crate::diagnostics::{LineDiagnostic, Severity, Span};
+use crate::diagnostics::{LineDiagnostic, Severity};
+use crate::io::preview_json::{self, round};
+use crate::io::source_file::read_source_file;
 use std::io::{self, Write};
 use std::path::{Path, PathBuf};
 
@@ -151,59 +151,6 @@ pub(crate) fn run_program(
         diagnostics.sort_by_key(|item| (item.line, item.diagnostic.span.start()));
     }
     diagnostics
-}
-
-/// The JSON document of `preview` for `moves` and `diagnostics` of the program `file`, as the language
-/// server's `sinumerik.endpointPreview` returns it; `columns` gives the 1-based character columns of
-/// a span in a 0-based line.
-/// `timing` times each move and gives the totals of the lines shown.
-pub(crate) fn write_preview_json(
-    out: &mut dyn Write,
-    file: &str,
-    metric: bool,
-    moves: &[Move],
-    timing: (&TimeModel, &TimeTotals),
-    diagnostics: &[LineDiagnostic],
-    columns: &mut dyn FnMut(usize, Span) -> (usize, usize),
-) -> io::Result<()> {
-    preview_json::write_header(out, file, metric)?;
-    for (index, movement) in moves.iter().enumerate() {
-        let time = timing.0.time_of(movement).seconds;
-        preview_json::write_move(out, movement, index == 0, time)?;
-    }
-    let columns = std::cell::RefCell::new(columns);
-    preview_json::write_footer(out, timing.1, diagnostics, &|item| {
-        (columns.borrow_mut())(item.line, item.diagnostic.span)
-    })
-}
-
-/// Like [`write_preview_json`] for executed moves, with what was assumed about the entry state.
-// Each argument is one part of the document (header, moves, times, findings, column conversion).
-#[allow(clippy::too_many_arguments)]
-pub(crate) fn write_executed_preview_json(
-    out: &mut dyn Write,
-    file: &str,
-    metric: bool,
-    assumed: &[(&'static str, String)],
-    moves: &[&ExecutedMove],
-    timing: (&TimeModel, &TimeTotals),
-    diagnostics: &[LineDiagnostic],
-    columns: &mut dyn FnMut(usize, Span) -> (usize, usize),
-) -> io::Result<()> {
-    preview_json::write_header_with(out, file, metric, assumed)?;
-    for (index, movement) in moves.iter().enumerate() {
-        let time = timing.0.time_of(&movement.movement).seconds;
-        preview_json::write_executed_move(out, movement, index == 0, file, time)?;
-    }
-    let columns = std::cell::RefCell::new(columns);
-    preview_json::write_footer(out, timing.1, diagnostics, &|item| {
-        (columns.borrow_mut())(item.line, item.diagnostic.span)
-    })
-}
-
-/// The 1-based character columns of a span in one line of text.
-pub(crate) fn line_columns(line: &str, span: Span) -> (usize, usize) {
-    ProgramLines::new(line).columns(0, span)
 }
 
 /// The configuration file the program uses: the one given with `--config`, else the nearest

@@ -7,11 +7,11 @@
 //! be written back exactly (invalid UTF-8 after a byte-order mark) is refused with a message.
 
 use super::check::{collect_program_files, run_configs, ProblemReporter};
-use super::source_file::{
+use super::exit_codes::{EXIT_ERRORS_FOUND, EXIT_OK, EXIT_TROUBLE};
+use crate::config::MachineConfig;
+use crate::io::source_file::{
     decode_source, decode_windows_1252, SourceEncoding, MAX_SOURCE_FILE_SIZE,
 };
-use super::{EXIT_ERRORS_FOUND, EXIT_OK, EXIT_TROUBLE};
-use crate::config::MachineConfig;
 use std::collections::HashMap;
 use std::io::{self, Write};
 use std::path::{Path, PathBuf};

@@ -3,6 +3,7 @@
 //! (with `raw.rs` for the file as written and `file_keys.rs` for key positions); each option table of
 //! its own in `contours.rs`, `cycles.rs`, `execution.rs` and `timing.rs`.
 
+mod axes;
 pub mod contours;
 pub mod cycles;
 pub mod edit;

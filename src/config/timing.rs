@@ -2,7 +2,7 @@
 //! axes' maximum velocity (MD32000 `MAX_AX_VELO`) and acceleration (MD32300 `MAX_AX_ACCEL`), and the
 //! spindle's speed limit where the program sets none with `LIMS`.
 
-use super::machine::Axis;
+use super::axes::Axis;
 use serde::Deserialize;
 use std::collections::BTreeMap;
 

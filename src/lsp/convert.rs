@@ -43,7 +43,7 @@ pub fn position_to_char(rope: &Rope, position: Position, encoding: PositionEncod
         return rope.len_chars();
     }
     let line_start = rope.line_to_char(line_idx);
-    let line = crate::lsp::text_document::line_without_terminator(rope, line_idx);
+    let line = line_without_terminator(rope, line_idx);
     let character = position.character as usize;
     let offset = match encoding {
         PositionEncoding::Utf8 => line.byte_to_char(character.min(line.len_bytes())),
@@ -119,6 +119,28 @@ fn severity(severity: Severity) -> DiagnosticSeverity {
         Severity::Warning => DiagnosticSeverity::WARNING,
         Severity::Information => DiagnosticSeverity::INFORMATION,
         Severity::Hint => DiagnosticSeverity::HINT,
+    }
+}
+
+/// A line of a rope without its terminator.
+pub fn line_without_terminator(rope: &Rope, line_idx: usize) -> ropey::RopeSlice<'_> {
+    if line_idx >= rope.len_lines() {
+        return rope.slice(0..0);
+    }
+    let line = rope.line(line_idx);
+    line.slice(..line.len_chars() - terminator_chars(line))
+}
+
+/// The length in characters of a line's terminator (LF, CRLF, CR, or none on the last line).
+pub fn terminator_chars(line: ropey::RopeSlice<'_>) -> usize {
+    let length = line.len_chars();
+    match (
+        length.checked_sub(2).map(|index| line.char(index)),
+        length.checked_sub(1).map(|index| line.char(index)),
+    ) {
+        (Some('\r'), Some('\n')) => 2,
+        (_, Some('\n' | '\r')) => 1,
+        _ => 0,
     }
 }
 

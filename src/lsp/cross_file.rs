@@ -6,7 +6,7 @@
 //! wrote its message, so it writes again instead of publishing an outdated set.
 
 use crate::diagnostics::LineDiagnostic;
-use crate::lsp::documents::lock;
+use crate::lsp::locks::lock;
 use crate::lsp::text_document::RopeLineChange;
 use std::sync::Mutex;
 

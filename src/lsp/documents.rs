@@ -10,9 +10,10 @@ use crate::analysis::library::ProgramLibrary;
 use crate::analysis::ProgramKind;
 use crate::config::MachineConfig;
 use crate::diagnostics::LineDiagnostic;
-use crate::ide::execution::{execute_document, DocumentExecution};
+use crate::ide::execution::DocumentExecution;
 use crate::lsp::convert::PositionEncoding;
 use crate::lsp::cross_file::{extra_findings, ExtraDiagnostics};
+use crate::lsp::execution_job::{CachedExecution, CachedTimes, ExecutionJob};
 use crate::lsp::log;
 use crate::lsp::publish::limit::{note, note_diagnostic, within_limit};
 use crate::lsp::publish::wire::WireDiagnostic;
@@ -27,13 +28,8 @@ use std::path::PathBuf;
 use std::sync::{Arc, Mutex, MutexGuard};
 use tower_lsp_server::ls_types::{TextDocumentContentChangeEvent, Uri};
 
-/// Locks a mutex, also after a panic elsewhere poisoned it: the data behind our locks stays
-/// consistent at every unlock, and the server must keep serving.
-pub fn lock<T>(mutex: &Mutex<T>) -> MutexGuard<'_, T> {
-    mutex
-        .lock()
-        .unwrap_or_else(|poisoned| poisoned.into_inner())
-}
+/// Kept under this name for the files that take it from here.
+pub use crate::lsp::locks::lock;
 
 /// What changed since the analysis last looked at the text.
 #[derive(Debug, Clone, Copy)]
@@ -67,81 +63,6 @@ pub struct Analysed {
     execution: Arc<Mutex<CachedExecution>>,
     /// The machining times of the run (`ide::timing`), kept like the run.
     times: Arc<Mutex<CachedTimes>>,
-}
-
-type CachedExecution = Option<(u64, u64, Arc<DocumentExecution>)>;
-type CachedTimes = Option<(u64, u64, Arc<crate::ide::timing::DocumentTimes>)>;
-
-/// What running one revision of a document needs, taken from its analysis so that the run (seconds
-/// for a large program with many loops) does not hold the analysis, which every edit needs.
-pub struct ExecutionJob {
-    rope: Rope,
-    revision: u64,
-    config: Arc<MachineConfig>,
-    kind: crate::analysis::ProgramKind,
-    cache: Arc<Mutex<CachedExecution>>,
-    times: Arc<Mutex<CachedTimes>>,
-}
-
-impl ExecutionJob {
-    /// The run of the job's revision: the cached one, or made now (resuming the previous revision's
-    /// run where the edit allows it). Runs asked for at once wait for one another.
-    pub fn run(&self, library: &dyn ProgramLibrary) -> Arc<DocumentExecution> {
-        let mut cached = lock(&self.cache);
-        // Another file's change (a callee, a caller, a macro file) advances the library's generation:
-        // the run is made again for it.
-        let generation = library.generation();
-        if let Some((revision, run_generation, execution)) = cached.as_ref() {
-            if *revision == self.revision && *run_generation == generation {
-                return Arc::clone(execution);
-            }
-        }
-        // The run of an earlier revision is resumed where the edit allows it (`execution/recorded.rs`).
-        let earlier = cached
-            .as_ref()
-            .map(|(_, _, execution)| Arc::clone(execution));
-        let execution = Arc::new(execute_document(
-            &RopeLines::new(&self.rope),
-            &self.config,
-            self.kind,
-            library,
-            &self.config.execution,
-            earlier.as_deref(),
-        ));
-        // A newer revision's run may have been stored meanwhile: it stays.
-        let newer = cached
-            .as_ref()
-            .is_some_and(|(revision, _, _)| *revision > self.revision);
-        if !newer {
-            *cached = Some((self.revision, generation, Arc::clone(&execution)));
-        }
-        execution
-    }
-
-    /// The machining times of the job's revision: the cached ones, or made now from its run.
-    pub fn times(&self, library: &dyn ProgramLibrary) -> Arc<crate::ide::timing::DocumentTimes> {
-        let execution = self.run(library);
-        let generation = library.generation();
-        let mut cached = lock(&self.times);
-        if let Some((revision, run_generation, times)) = cached.as_ref() {
-            if *revision == self.revision && *run_generation == generation {
-                return Arc::clone(times);
-            }
-        }
-        let times = Arc::new(crate::ide::timing::DocumentTimes::new(
-            &RopeLines::new(&self.rope),
-            &execution,
-            &self.config,
-            self.kind,
-        ));
-        let newer = cached
-            .as_ref()
-            .is_some_and(|(revision, _, _)| *revision > self.revision);
-        if !newer {
-            *cached = Some((self.revision, generation, Arc::clone(&times)));
-        }
-        times
-    }
 }
 
 impl Analysed {

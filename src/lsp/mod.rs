@@ -2,53 +2,43 @@
 //! it (`analysis`, `syntax`, `config`, `diagnostics`) speaks in lines, byte spans and plain values;
 //! this module converts at its edge (`convert.rs`).
 //!
-//! - `server.rs`: the `LanguageServer` implementation; dispatch, settings, capabilities.
-//! - `documents.rs`: open documents, their analysis on snapshots, the worker that publishes.
-//! - `text_document.rs`: rope text, `apply_changes`, the lines an edit touched, `LineSource`.
-//! - `convert.rs`: positions in the negotiated encoding, spans to ranges, diagnostics.
+//! - `server.rs`: the `LanguageServer` implementation, which only dispatches; `state.rs`: the state
+//!   it shares with its tasks; `capabilities.rs`: `initialize`; `configuration.rs`: the settings.
+//! - `handlers/`: one file per feature, converting the core's answers to LSP types.
+//! - `workspace/`: the workspace index, its updates, the libraries of open documents.
+//! - `documents.rs`: open documents, their analysis on snapshots, the worker that publishes;
+//!   `execution_job.rs`: the run of a revision; `text_document.rs`: rope text, `apply_changes`;
+//!   `convert.rs`: positions in the negotiated encoding, spans to ranges, diagnostics;
+//!   `cross_file.rs`: the W3xx findings joined to the published diagnostics.
 //! - `publish/`: diagnostics publication (the `maxDiagnostics` limit, the one JSON encoder of
 //!   diagnostics, reuse of the unchanged items from one publication to the next).
-//! - `hover.rs`, `inlay.rs`, `code_action.rs`, `endpoint_preview.rs`: one feature each.
-//! - `words.rs`: where the words of a block are, for the cursor.
-//! - `settings.rs`: settings and each document's machine configuration; `ext.rs`: own protocol types.
-//! - `library.rs`: the programs a document calls, found through the workspace index.
-//! - `log.rs`: logging and slow-handler reports.
 //! - `transport/`: one reader, one framing parser, one writer around the framework's dispatch; the
-//!   process's stdio and allocator settings (the crate's only `unsafe`).
+//!   process's stdio and allocator settings (the crate's only `unsafe`); `log.rs`: logging and
+//!   slow-handler reports.
+//! - `settings.rs`, `ext.rs`, `uris.rs`, `locks.rs`: settings, own protocol types, URIs, locks.
 
-mod call_sites;
-mod code_action;
-mod completion;
-mod config_fixes;
+mod capabilities;
+mod configuration;
 mod convert;
 mod cross_file;
 mod documents;
-mod endpoint_preview;
+mod execution_job;
 mod ext;
-mod hover;
-mod hover_resolution;
-mod inlay;
-mod library;
+mod handlers;
+mod locks;
 mod log;
-mod modal_state;
-mod navigation;
-mod numbers;
-mod outline;
 mod publish;
-mod rewrite_commands;
-mod semantic;
 mod server;
 mod settings;
-mod signature;
+mod state;
 mod text_document;
 mod transport;
-mod words;
+mod uris;
 mod workspace;
-mod workspace_edit;
 
 pub use convert::PositionEncoding;
 pub use ext::{EndpointPreviewParams, ENDPOINT_PREVIEW_COMMAND};
-pub use rewrite_commands::{FORMAT_COMMAND, RENUMBER_COMMAND};
+pub use handlers::rewrite_commands::{FORMAT_COMMAND, RENUMBER_COMMAND};
 // For the fuzzer (examples/fuzz): the framing parser and the encoding of diagnostics.
 pub use publish::{publication as publication_body, ranges as diagnostic_ranges, Publisher};
 pub use text_document::{apply_changes, DocumentText, LineChange, RopeLineChange, RopeLines};

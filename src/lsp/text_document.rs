@@ -173,28 +173,6 @@ pub fn core_line_count(rope: &Rope) -> usize {
     }
 }
 
-/// The length in characters of a line's terminator (LF, CRLF, CR, or none on the last line).
-pub fn terminator_chars(line: ropey::RopeSlice<'_>) -> usize {
-    let length = line.len_chars();
-    match (
-        length.checked_sub(2).map(|index| line.char(index)),
-        length.checked_sub(1).map(|index| line.char(index)),
-    ) {
-        (Some('\r'), Some('\n')) => 2,
-        (_, Some('\n' | '\r')) => 1,
-        _ => 0,
-    }
-}
-
-/// A line of a rope without its terminator.
-pub fn line_without_terminator(rope: &Rope, line_idx: usize) -> ropey::RopeSlice<'_> {
-    if line_idx >= rope.len_lines() {
-        return rope.slice(0..0);
-    }
-    let line = rope.line(line_idx);
-    line.slice(..line.len_chars() - terminator_chars(line))
-}
-
 /// A rope snapshot read by the analysis: lines without terminators, counted as the core counts them.
 /// The analysis mostly reads lines in order, so the last position is kept: the next line then comes
 /// from ropey's line iterator instead of a lookup from the root for every line.

@@ -4,7 +4,7 @@
 
 use crate::analysis::document::{ResolutionMode, StateSummary, WordResolution};
 use crate::config::{AxisKind, MachineConfig};
-use crate::lsp::numbers::{fixed, same, term};
+use crate::lsp::handlers::numbers::{fixed, same, term};
 use crate::syntax::ast::Modifier;
 use std::fmt::Write;
 

@@ -7,9 +7,9 @@
 use crate::analysis::document::{DocumentAnalysis, TextLines};
 use crate::analysis::execution::entry::{CallSiteState, CallerEntry};
 use crate::analysis::ProgramKind;
-use crate::cli::source_file::read_source_file;
 use crate::ide::workspace::{program_name_and_kind, FileKind};
-use crate::lsp::server::Shared;
+use crate::io::source_file::read_source_file;
+use crate::lsp::state::Shared;
 use std::path::Path;
 use std::sync::Arc;
 

@@ -7,10 +7,10 @@ use crate::config::MachineConfig;
 use crate::ide::execution::DocumentExecution;
 use crate::lsp::convert::{end_of_line, PositionEncoding};
 use crate::lsp::documents::Analysed;
-use crate::lsp::hover::{axis_of, machine_differs};
-use crate::lsp::numbers::{same, short};
+use crate::lsp::handlers::hover::{axis_of, machine_differs};
+use crate::lsp::handlers::numbers::{same, short};
+use crate::lsp::handlers::words::{words, Word, WordValue};
 use crate::lsp::settings::InlayHintMode;
-use crate::lsp::words::{words, Word, WordValue};
 use tower_lsp_server::ls_types::{InlayHint, InlayHintLabel, InlayHintTooltip, Range};
 
 /// The hints for the lines of `range` (both ends included).

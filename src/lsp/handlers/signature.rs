@@ -4,8 +4,8 @@
 use crate::ide::signature_help::signature_help;
 use crate::lsp::convert::{byte_to_character, PositionEncoding};
 use crate::lsp::documents::Analysed;
-use crate::lsp::navigation::line_at;
-use crate::lsp::server::Shared;
+use crate::lsp::handlers::navigation::line_at;
+use crate::lsp::state::Shared;
 use tower_lsp_server::ls_types::{
     Documentation, ParameterInformation, ParameterLabel, Position, SignatureHelp,
     SignatureInformation, Uri,

@@ -4,16 +4,20 @@
 use crate::analysis::document::{DocumentAnalysis, LineSource, TextLines};
 use crate::analysis::library::ProgramLibrary;
 use crate::analysis::ProgramKind;
-use crate::cli::preview::{line_columns, write_executed_preview_json, write_preview_json};
-use crate::cli::source_file::read_source_file;
 use crate::config::MachineConfig;
 use crate::ide::execution::{execute_document, DocumentExecution};
 use crate::ide::timing::DocumentTimes;
 use crate::ide::timing::{TimeModel, TimeTotals};
+use crate::io::preview_json::{line_columns, write_executed_preview_json, write_preview_json};
+use crate::io::source_file::read_source_file;
 use crate::lsp::documents::Analysed;
+use crate::lsp::ext::{EndpointPreviewParams, ENDPOINT_PREVIEW_COMMAND};
+use crate::lsp::state::Shared;
+use crate::lsp::uris::{file_path, program_kind};
 use serde_json::Value;
 use std::path::Path;
 use std::sync::Arc;
+use tower_lsp_server::jsonrpc::Error;
 
 /// Lines `start ..= end` (0-based); a missing end is the end of the document.
 #[derive(Debug, Clone, Copy)]
@@ -168,4 +172,59 @@ pub fn preview_file(
         label,
         lines,
     )
+}
+
+/// `workspace/executeCommand` of `sinumerik.endpointPreview`: the preview of an open document (on
+/// its analysis) or of a file on disk.
+pub async fn execute(
+    shared: &Arc<Shared>,
+    command: &str,
+    arguments: &[Value],
+) -> tower_lsp_server::jsonrpc::Result<Option<Value>> {
+    if command != ENDPOINT_PREVIEW_COMMAND {
+        return Err(Error::invalid_params(format!(
+            "unknown command {}",
+            command
+        )));
+    }
+    let [argument] = arguments else {
+        return Err(Error::invalid_params(format!(
+            "{ENDPOINT_PREVIEW_COMMAND} takes one argument {{\"uri\", \"startLine\"?, \"endLine\"?}}"
+        )));
+    };
+    let preview: EndpointPreviewParams = serde_json::from_value(argument.clone())
+        .map_err(|error| Error::invalid_params(format!("{ENDPOINT_PREVIEW_COMMAND}: {error}")))?;
+    let lines = LineSelection {
+        start: preview.start_line,
+        end: preview.end_line,
+    };
+    let label = file_path(&preview.uri)
+        .map(|path| path.display().to_string())
+        .unwrap_or_else(|| preview.uri.as_str().to_string());
+    let library = crate::lsp::workspace::library::workspace_library(
+        shared,
+        file_path(&preview.uri).as_deref(),
+    );
+    if shared.documents.get(&preview.uri).is_some() {
+        let result = shared
+            .on_analysis(&preview.uri, move |analysed| {
+                preview_open(analysed, &label, lines, library.as_ref())
+            })
+            .await?;
+        return result.map(Some).map_err(Error::invalid_params);
+    }
+    let path = file_path(&preview.uri).ok_or_else(|| {
+        Error::invalid_params(format!(
+            "{} is neither open nor a file: URI",
+            preview.uri.as_str()
+        ))
+    })?;
+    let config = shared.machine_config(Some(&path));
+    let kind = program_kind(&preview.uri, Some(&path));
+    let result = tokio::task::spawn_blocking(move || {
+        preview_file(&path, &label, config, kind, lines, library.as_ref())
+    })
+    .await
+    .map_err(|_| Error::internal_error())?;
+    result.map(Some).map_err(Error::invalid_params)
 }

@@ -12,7 +12,7 @@ use crate::ide::semantic_tokens::{
 use crate::ide::symbols::SymbolTable;
 use crate::lsp::convert::{byte_to_character, PositionEncoding};
 use crate::lsp::documents::Analysed;
-use crate::lsp::server::Shared;
+use crate::lsp::state::Shared;
 use std::sync::Arc;
 use tower_lsp_server::ls_types::{
     Range, SemanticToken, SemanticTokenModifier, SemanticTokenType, SemanticTokens,

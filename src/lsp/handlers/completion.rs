@@ -7,8 +7,8 @@
 use crate::ide::completion::{completion, CompletionKind};
 use crate::lsp::convert::PositionEncoding;
 use crate::lsp::documents::Analysed;
-use crate::lsp::navigation::line_at;
-use crate::lsp::server::Shared;
+use crate::lsp::handlers::navigation::line_at;
+use crate::lsp::state::Shared;
 use tower_lsp_server::ls_types::{
     CompletionItem, CompletionItemKind, CompletionItemLabelDetails, Documentation,
     InsertTextFormat, MarkupContent, MarkupKind, Position, Uri,

@@ -9,9 +9,13 @@ use crate::ide::workspace::file_name_for_program;
 use crate::ide::{DocumentId, Location as IdeLocation};
 use crate::lsp::convert::{character_to_byte, span_to_range, PositionEncoding};
 use crate::lsp::documents::Analysed;
-use crate::lsp::server::{file_path, Shared};
-use crate::lsp::workspace::{update_all_open, IndexState};
-use crate::lsp::workspace_edit::{workspace_edit, workspace_edit_with_renames, DocumentEdits};
+use crate::lsp::handlers::workspace_edit::{
+    workspace_edit, workspace_edit_with_renames, DocumentEdits,
+};
+use crate::lsp::state::Shared;
+use crate::lsp::uris::file_path;
+use crate::lsp::workspace::index::IndexState;
+use crate::lsp::workspace::updates::update_all_open;
 use std::collections::HashMap;
 use tower_lsp_server::jsonrpc::{Error, ErrorCode};
 use tower_lsp_server::ls_types::{
@@ -108,7 +112,7 @@ impl<'a> LineTexts<'a> {
             let text = uri
                 .as_ref()
                 .and_then(file_path)
-                .and_then(|path| crate::cli::source_file::read_source_file(&path).ok())
+                .and_then(|path| crate::io::source_file::read_source_file(&path).ok())
                 .map(|source| source.text)
                 .unwrap_or_default();
             (split(&text), None)

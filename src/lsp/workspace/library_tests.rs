@@ -4,6 +4,7 @@
 use super::*;
 use crate::config::MachineConfig;
 use crate::ide::SymbolTable;
+use crate::lsp::workspace::library_texts::LibraryTexts;
 use std::cell::Cell;
 
 /// An absolute path below a folder that need not exist (nothing here reads it).

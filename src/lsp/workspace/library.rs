@@ -14,74 +14,15 @@
 //! after releasing it; it must not be called while the caller holds the index's lock.
 
 use crate::analysis::library::{LibraryProgram, ProgramLibrary};
-use crate::cli::source_file::read_source_file;
 use crate::ide::workspace::{call_rank, macro_file_rank, FileKind, IndexedDocument};
 use crate::ide::{DocumentId, WorkspaceIndex};
-use crate::lsp::documents::lock;
-use crate::lsp::server::Shared;
+use crate::io::source_file::read_source_file;
+use crate::lsp::locks::lock;
+use crate::lsp::state::Shared;
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 use std::sync::{Arc, Mutex, Weak};
 use tower_lsp_server::ls_types::Uri;
-
-/// The texts of files on disk that libraries read, by document id, until the index sees the file
-/// change; and the generation of the index, which every change of an entry advances.
-#[derive(Default)]
-pub struct LibraryTexts {
-    state: Mutex<TextsState>,
-}
-
-#[derive(Default)]
-struct TextsState {
-    generation: u64,
-    /// `None` for a file that could not be read.
-    texts: HashMap<DocumentId, Option<Arc<str>>>,
-}
-
-impl LibraryTexts {
-    /// Advances with every change of the index: what a library found before may be out of date.
-    pub fn generation(&self) -> u64 {
-        lock(&self.state).generation
-    }
-
-    /// An entry of the index changed (an open document's, whose text libraries do not keep).
-    pub fn index_changed(&self) {
-        lock(&self.state).generation += 1;
-    }
-
-    /// The file of `id` changed on disk or went away: it is read again when asked for.
-    pub fn file_changed(&self, id: &str) {
-        let mut state = lock(&self.state);
-        state.texts.remove(id);
-        state.generation += 1;
-    }
-
-    /// Every file may have changed (a new indexing run).
-    pub fn clear(&self) {
-        let mut state = lock(&self.state);
-        state.texts.clear();
-        state.generation += 1;
-    }
-
-    /// The text of `id`, read with `read` unless it is kept. A text read while the file changed is
-    /// returned but not kept: the change may have come after the reading.
-    fn text(&self, id: &DocumentId, read: impl FnOnce() -> Option<Arc<str>>) -> Option<Arc<str>> {
-        let generation = {
-            let state = lock(&self.state);
-            if let Some(text) = state.texts.get(id) {
-                return text.clone();
-            }
-            state.generation
-        };
-        // The lock is not held while the file is read: other lookups go on meanwhile.
-        let text = read();
-        let mut state = lock(&self.state);
-        if state.generation == generation {
-            state.texts.insert(Arc::clone(id), text.clone());
-        }
-        text
-    }
-}
 
 /// The library of one open document. Cheap to create: it holds the folders above the document and
 /// looks everything else up when asked.
@@ -222,7 +163,7 @@ fn cached<T: Clone>(
     value
 }
 
-fn chosen(state: &crate::lsp::workspace::IndexState, document: &IndexedDocument) -> Chosen {
+fn chosen(state: &crate::lsp::workspace::index::IndexState, document: &IndexedDocument) -> Chosen {
     Chosen {
         id: Arc::clone(&document.id),
         uri: state.uri(&document.id).cloned(),
@@ -281,7 +222,7 @@ impl ProgramLibrary for WorkspaceLibrary {
 impl WorkspaceLibrary {
     fn entry_from_call_sites(&self) -> Option<Arc<crate::analysis::execution::entry::CallerEntry>> {
         let shared = self.shared.upgrade()?;
-        crate::lsp::call_sites::caller_entry(&shared, self.path.as_deref()?)
+        crate::lsp::workspace::call_sites::caller_entry(&shared, self.path.as_deref()?)
     }
 
     fn index_generation(&self) -> u64 {

@@ -1,15 +1,17 @@
-//! The JSON form of the preview, written move by move: a program of a million blocks must neither build
+//! The JSON form of the preview (the command line's `preview --format json` and the server's
+//! `sinumerik.endpointPreview`), written move by move: a program of a million blocks must neither build
 //! a tree of a million JSON values nor keep its moves in memory. Numbers go through serde_json, so they
 //! print exactly as any other JSON the product writes (`58.0`, shortest round trip).
 
 use crate::analysis::execution::ExecutedMove;
+use crate::analysis::simulation::time::{TimeModel, TimeTotals};
 use crate::analysis::Move;
-use crate::diagnostics::LineDiagnostic;
+use crate::diagnostics::{LineDiagnostic, Span};
 use std::io::{self, Write};
 use std::sync::Arc;
 
 /// Rounds away floating-point noise (1e-9 mm) so that `58.0` does not print as `57.99999999999999`.
-pub(crate) fn round(value: f64) -> f64 {
+pub fn round(value: f64) -> f64 {
     // Beyond about 1e299 the scaling below overflows to infinity (written as `null`); such values
     // have no digits after the point to round anyway.
     if !(value * 1e9).is_finite() {
@@ -24,13 +26,13 @@ pub(crate) fn round(value: f64) -> f64 {
 }
 
 /// Writes the opening of the document: the file, the units and the start of the `moves` array.
-pub(crate) fn write_header(out: &mut dyn Write, file: &str, metric: bool) -> io::Result<()> {
+pub fn write_header(out: &mut dyn Write, file: &str, metric: bool) -> io::Result<()> {
     write_header_with(out, file, metric, &[])
 }
 
 /// Writes the opening of the document with what was assumed about the entry state of a subprogram
 /// (`"assumed": {"units": "G71", ...}`, left out when nothing was assumed).
-pub(crate) fn write_header_with(
+pub fn write_header_with(
     out: &mut dyn Write,
     file: &str,
     metric: bool,
@@ -56,7 +58,7 @@ pub(crate) fn write_header_with(
 
 /// Writes one move with its time in seconds (`null` when unknown); `first` says whether it opens
 /// the array.
-pub(crate) fn write_move(
+pub fn write_move(
     out: &mut dyn Write,
     movement: &Move,
     first: bool,
@@ -104,7 +106,7 @@ fn write_seconds(out: &mut dyn Write, seconds: Option<f64>) -> io::Result<()> {
 
 /// Writes the top-level `"time"` of the preview: the sums over the moves and dwells, and how many
 /// moves' times are unknown.
-pub(crate) fn write_time_totals(
+pub fn write_time_totals(
     out: &mut dyn Write,
     totals: &crate::analysis::simulation::time::TimeTotals,
 ) -> io::Result<()> {
@@ -121,7 +123,7 @@ pub(crate) fn write_time_totals(
 
 /// Writes one executed move: the move's fields, then what execution adds (`pass`, `file`, `stack`,
 /// `conditional`, `assumed`), each only where it applies.
-pub(crate) fn write_executed_move(
+pub fn write_executed_move(
     out: &mut dyn Write,
     executed: &ExecutedMove,
     first: bool,
@@ -235,7 +237,7 @@ fn write_move_fields(out: &mut dyn Write, movement: &Move, first: bool) -> io::R
 
 /// Closes the `moves` array and writes the time totals and the diagnostics with 1-based lines and
 /// character columns (`columns` converts a line's byte span).
-pub(crate) fn write_footer(
+pub fn write_footer(
     out: &mut dyn Write,
     totals: &crate::analysis::simulation::time::TimeTotals,
     diagnostics: &[LineDiagnostic],
@@ -337,6 +339,73 @@ fn write_integer(out: &mut dyn Write, value: u64) -> io::Result<()> {
     let mut buffer = [0u8; 20];
     let length = write_digits(&mut buffer, value);
     out.write_all(&buffer[..length])
+}
+
+/// The JSON document of `preview` for `moves` and `diagnostics` of the program `file`, as the language
+/// server's `sinumerik.endpointPreview` returns it; `columns` gives the 1-based character columns of
+/// a span in a 0-based line.
+/// `timing` times each move and gives the totals of the lines shown.
+pub fn write_preview_json(
+    out: &mut dyn Write,
+    file: &str,
+    metric: bool,
+    moves: &[Move],
+    timing: (&TimeModel, &TimeTotals),
+    diagnostics: &[LineDiagnostic],
+    columns: &mut dyn FnMut(usize, Span) -> (usize, usize),
+) -> io::Result<()> {
+    write_header(out, file, metric)?;
+    for (index, movement) in moves.iter().enumerate() {
+        let time = timing.0.time_of(movement).seconds;
+        write_move(out, movement, index == 0, time)?;
+    }
+    let columns = std::cell::RefCell::new(columns);
+    write_footer(out, timing.1, diagnostics, &|item| {
+        (columns.borrow_mut())(item.line, item.diagnostic.span)
+    })
+}
+
+/// Like [`write_preview_json`] for executed moves, with what was assumed about the entry state.
+// Each argument is one part of the document (header, moves, times, findings, column conversion).
+#[allow(clippy::too_many_arguments)]
+pub fn write_executed_preview_json(
+    out: &mut dyn Write,
+    file: &str,
+    metric: bool,
+    assumed: &[(&'static str, String)],
+    moves: &[&ExecutedMove],
+    timing: (&TimeModel, &TimeTotals),
+    diagnostics: &[LineDiagnostic],
+    columns: &mut dyn FnMut(usize, Span) -> (usize, usize),
+) -> io::Result<()> {
+    write_header_with(out, file, metric, assumed)?;
+    for (index, movement) in moves.iter().enumerate() {
+        let time = timing.0.time_of(&movement.movement).seconds;
+        write_executed_move(out, movement, index == 0, file, time)?;
+    }
+    let columns = std::cell::RefCell::new(columns);
+    write_footer(out, timing.1, diagnostics, &|item| {
+        (columns.borrow_mut())(item.line, item.diagnostic.span)
+    })
+}
+
+/// The 1-based character columns of a span in one line of text: the first character and the one
+/// after the last. Offsets past the end count as the end, and an offset inside a multi-byte character
+/// widens the span to that character, so a bad span never panics.
+pub fn line_columns(line: &str, span: Span) -> (usize, usize) {
+    let mut start = span.start().min(line.len());
+    while !line.is_char_boundary(start) {
+        start -= 1;
+    }
+    let mut end = span.end().max(span.start()).min(line.len());
+    while !line.is_char_boundary(end) {
+        end += 1;
+    }
+    let start_index = line[..start].chars().count();
+    (
+        start_index + 1,
+        start_index + line[start..end].chars().count() + 1,
+    )
 }
 
 #[cfg(test)]
