@@ -17,9 +17,6 @@ use std::path::{Path, PathBuf};
 use std::rc::Rc;
 use std::sync::Arc;
 
-/// The most findings the human format prints for one file; the summary still counts all of them.
-pub(crate) const MAX_HUMAN_FINDINGS_PER_FILE: usize = 1_000;
-
 /// Runs `check` and returns the exit code. Problems with inputs (unreadable paths, bad configuration
 /// files) go to `stderr` and do not stop the run, so one bad file does not hide the findings in the
 /// others; the `Err` case is only a failure to write the output itself.

@@ -1,22 +1,11 @@
-//! Logging of the server: lines on stderr (editors show a server's stderr in its output panel), and
-//! the handlers or jobs that took longer than [`SLOW`].
+//! Logging of the server to the client (window/logMessage) and stderr, and the handlers or jobs that
+//! took longer than [`SLOW`]. Lines on stderr alone, which the transport writes, are in
+//! `transport/stderr.rs`.
 
 use crate::lsp::transport::outbox::OutgoingSender;
+use crate::lsp::transport::stderr::SLOW;
 use std::time::{Duration, Instant};
 use tower_lsp_server::ls_types::MessageType;
-
-/// Work that takes longer than this is logged (rust-analyzer's "overly long loop turn").
-pub const SLOW: Duration = Duration::from_millis(100);
-
-pub fn to_stderr(level: MessageType, message: &str) {
-    let level = match level {
-        MessageType::ERROR => "error",
-        MessageType::WARNING => "warning",
-        MessageType::INFO => "info",
-        _ => "log",
-    };
-    eprintln!("sinumerik-lsp {level}: {message}");
-}
 
 /// Logs `what` when it took longer than [`SLOW`], on stderr and to the client.
 pub fn slow(what: &str, elapsed: Duration, outgoing: &OutgoingSender) {
@@ -36,16 +25,6 @@ pub fn slow_with_sender(
 ) {
     if elapsed > SLOW {
         slow(&what(), elapsed, outgoing);
-    }
-}
-
-/// Logs on stderr only, for the output itself.
-pub fn slow_with(what: impl FnOnce() -> String, elapsed: Duration) {
-    if elapsed > SLOW {
-        to_stderr(
-            MessageType::INFO,
-            &format!("{} took {} ms", what(), elapsed.as_millis()),
-        );
     }
 }
 

@@ -3,9 +3,8 @@
 //! annotation on the line of the pull request and in the run's summary; the last line is the human
 //! format's summary, which the log shows as it is.
 
+use super::output::{CheckOutput, FileFindings, RunSummary, MAX_SHOWN_FINDINGS_PER_FILE};
 use super::uri::slash_path;
-use super::{CheckOutput, FileFindings, RunSummary};
-use crate::cli::check::MAX_HUMAN_FINDINGS_PER_FILE;
 use crate::cli::report;
 use crate::diagnostics::{LineDiagnostic, Severity};
 use std::io::{self, Write};
@@ -21,14 +20,14 @@ impl CheckOutput for GithubOutput {
         let path = escape_property(&slash_path(file.path_text));
         // GitHub shows only the first annotations of a step, and the log is read by people: a file
         // of junk is cut off as in the human format (the summary still counts everything).
-        for line_diagnostic in file.diagnostics.iter().take(MAX_HUMAN_FINDINGS_PER_FILE) {
+        let (shown, hidden) = file.shown();
+        for line_diagnostic in shown {
             write_command(out, &path, file, line_diagnostic)?;
         }
-        if file.diagnostics.len() > MAX_HUMAN_FINDINGS_PER_FILE {
+        if hidden > 0 {
             writeln!(
                 out,
-                "::warning file={path},title=more findings::{} more findings not shown (the first {MAX_HUMAN_FINDINGS_PER_FILE} of each file are; --format sarif lists all)",
-                file.diagnostics.len() - MAX_HUMAN_FINDINGS_PER_FILE
+                "::warning file={path},title=more findings::{hidden} more findings not shown (the first {MAX_SHOWN_FINDINGS_PER_FILE} of each file are; --format sarif lists all)",
             )?;
         }
         Ok(())
@@ -165,9 +164,9 @@ mod tests {
     #[test]
     fn a_file_of_junk_is_cut_off() {
         let item = finding(Code::SameGroupTwice, Severity::Error, 0, 1);
-        let many = vec![item; MAX_HUMAN_FINDINGS_PER_FILE + 5];
+        let many = vec![item; MAX_SHOWN_FINDINGS_PER_FILE + 5];
         let rendered = render("J.MPF", "X", &many);
-        assert_eq!(rendered.lines().count(), MAX_HUMAN_FINDINGS_PER_FILE + 1);
+        assert_eq!(rendered.lines().count(), MAX_SHOWN_FINDINGS_PER_FILE + 1);
         assert!(rendered.ends_with("5 more findings not shown (the first 1000 of each file are; --format sarif lists all)\n"));
     }
 }

@@ -8,8 +8,8 @@
 //! of the line (without surrounding white space) and how many findings of that code on the same line
 //! text came before it in the file.
 
+use super::output::{CheckOutput, FileFindings, RunSummary};
 use super::uri::slash_path;
-use super::{CheckOutput, FileFindings, RunSummary};
 use crate::diagnostics::Severity;
 use serde_json::json;
 use std::collections::HashMap;

@@ -1,7 +1,6 @@
 //! The human format (compiler style, with a summary line) and the JSON array of `check`.
 
-use super::{CheckOutput, FileFindings, RunSummary};
-use crate::cli::check::MAX_HUMAN_FINDINGS_PER_FILE;
+use super::output::{CheckOutput, FileFindings, RunSummary, MAX_SHOWN_FINDINGS_PER_FILE};
 use crate::cli::report::{self, JsonDiagnostic};
 use std::io::{self, Write};
 
@@ -14,17 +13,15 @@ impl CheckOutput for HumanOutput {
     }
 
     fn file(&mut self, out: &mut dyn Write, file: &FileFindings<'_>) -> io::Result<()> {
-        // A file of junk (a binary, an archive) can give a million findings: a person reads the
-        // first ones, so the rest are counted in the summary but not printed.
-        for line_diagnostic in file.diagnostics.iter().take(MAX_HUMAN_FINDINGS_PER_FILE) {
+        let (shown, hidden) = file.shown();
+        for line_diagnostic in shown {
             report::write_human(out, file.path_text, file.lines, line_diagnostic)?;
         }
-        if file.diagnostics.len() > MAX_HUMAN_FINDINGS_PER_FILE {
+        if hidden > 0 {
             writeln!(
                 out,
-                "{}: {} more findings not shown (the first {MAX_HUMAN_FINDINGS_PER_FILE} of each file are; --format json lists all)",
+                "{}: {hidden} more findings not shown (the first {MAX_SHOWN_FINDINGS_PER_FILE} of each file are; --format json lists all)",
                 file.path_text,
-                file.diagnostics.len() - MAX_HUMAN_FINDINGS_PER_FILE
             )?;
         }
         Ok(())

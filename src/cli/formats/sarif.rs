@@ -3,8 +3,8 @@
 //! 1-based lines and columns counted in Unicode code points, end exclusive (the run says so with
 //! `columnKind`), and the finding's fix as a SARIF fix where it has one.
 
+use super::output::{alarm_numbers, CheckOutput, FileFindings, RunSummary};
 use super::uri::{folder_uri, is_absolute, path_uri};
-use super::{alarm_numbers, CheckOutput, FileFindings, RunSummary};
 use crate::cli::report::ProgramLines;
 use crate::diagnostics::{Code, LineDiagnostic, Severity, Span};
 use serde_json::{json, Map, Value};

@@ -100,7 +100,7 @@ impl Publisher {
         let same = |old: usize, new: usize| {
             self.ranges[old] == ranges[new] && self.items[old] == diagnostics[new]
         };
-        let reuse = !crate::lsp::transport::measured_without("diagnostics-reuse");
+        let reuse = !crate::lsp::transport::measure::measured_without("diagnostics-reuse");
         let most = if reuse {
             self.items.len().min(diagnostics.len())
         } else {

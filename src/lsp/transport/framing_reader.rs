@@ -1,11 +1,13 @@
 //! The reader: bytes from the client through the framer, each body read into a message.
 
-use crate::lsp::log;
 use crate::lsp::transport::framing::{next_header_in, Frame, Framer};
 use crate::lsp::transport::message::{read_message, Incoming, InitializeGate};
-use crate::lsp::transport::LARGE_BODY_BYTES;
+use crate::lsp::transport::stderr;
 use tokio::io::{AsyncRead, AsyncReadExt};
 use tower_lsp_server::ls_types::MessageType;
+
+/// Bodies from this size on are parsed on a blocking thread (a `didOpen` of a large program).
+pub(super) const LARGE_BODY_BYTES: usize = 1 << 20;
 
 /// Bytes asked of the input at a time.
 const READ_BYTES: usize = 1 << 20;
@@ -53,7 +55,7 @@ impl<R: AsyncRead + Unpin> MessageReader<R> {
                     return Some(incoming);
                 }
                 Some(Frame::Dropped(reason)) => {
-                    log::to_stderr(MessageType::WARNING, &reason);
+                    stderr::to_stderr(MessageType::WARNING, &reason);
                     continue;
                 }
                 None => {}

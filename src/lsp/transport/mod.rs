@@ -5,6 +5,8 @@
 //! - `message.rs`: a body read once into the framework's `Request` or `Response`, or dropped with the
 //!   error response JSON-RPC asks for.
 //! - `outbox.rs`: the queue every outgoing message goes through, and the task that writes it.
+//! - `framing_reader.rs`: input -> framer -> message; `stderr.rs`: the lines the transport logs;
+//!   `measure.rs`: the switch of the side-by-side measurements.
 //! - `sys.rs`: the process's stdio and allocator settings, the crate's only `unsafe` code.
 //!
 //! The framework's own `Server` is not used: its reader stops for good at the first body it cannot
@@ -14,13 +16,14 @@
 
 pub mod framing;
 mod framing_reader;
+pub mod measure;
 pub mod message;
 pub mod outbox;
 // The crate's only `unsafe` code: the process settings made through the C library.
+pub mod stderr;
 #[allow(unsafe_code)]
 mod sys;
 
-use crate::lsp::log;
 use futures::{SinkExt, StreamExt};
 use message::{Incoming, InitializeGate};
 use outbox::OutgoingSender;
@@ -30,27 +33,8 @@ use tower_lsp_server::jsonrpc::{Request, Response};
 use tower_lsp_server::ls_types::MessageType;
 use tower_lsp_server::{ClientSocket, LspService};
 
-/// Whether `SINUMERIK_LSP_MEASURE_WITHOUT` (a comma-separated list) turns `piece` of the performance
-/// machinery off: `allocator`, `pipe-buffers` (`sys.rs`) or `diagnostics-reuse` (`publish/`). For
-/// the side-by-side measurement of `docs/performance.md` only; read once.
-pub fn measured_without(piece: &str) -> bool {
-    static LIST: std::sync::OnceLock<Vec<String>> = std::sync::OnceLock::new();
-    LIST.get_or_init(|| {
-        std::env::var("SINUMERIK_LSP_MEASURE_WITHOUT")
-            .unwrap_or_default()
-            .split(',')
-            .map(|item| item.trim().to_string())
-            .collect()
-    })
-    .iter()
-    .any(|item| item == piece)
-}
-
 /// Requests the framework runs at once (its own default).
 const MAX_CONCURRENCY: usize = 4;
-
-/// Bodies from this size on are parsed on a blocking thread (a `didOpen` of a large program).
-const LARGE_BODY_BYTES: usize = 1 << 20;
 
 /// Serves the protocol on `input` and `output` until the client sends `exit` or closes the input;
 /// `build` makes the service, given the sender every outgoing message goes through.
@@ -137,7 +121,7 @@ async fn run<I, S>(
                     }
                 }
                 Incoming::Invalid { response, reason } => {
-                    log::to_stderr(MessageType::WARNING, &reason);
+                    stderr::to_stderr(MessageType::WARNING, &reason);
                     outgoing.send_message(&response);
                 }
             }

@@ -9,8 +9,8 @@
 //! into its own buffer and hands it to the blocking pool, 2 MiB at a time); in-process (tests) it is a
 //! task.
 
-use crate::lsp::log;
 use crate::lsp::transport::framing;
+use crate::lsp::transport::stderr;
 use serde::Serialize;
 use std::sync::Arc;
 use std::time::Duration;
@@ -128,7 +128,7 @@ impl OutgoingSender {
 
     /// Logs on stderr and as `window/logMessage`.
     pub fn log(&self, level: MessageType, message: String) {
-        log::to_stderr(level, &message);
+        stderr::to_stderr(level, &message);
         self.send(Outgoing::Log { level, message });
     }
 
@@ -184,7 +184,7 @@ where
                     let _ = done_sender.send(());
                 });
             if let Err(error) = spawned {
-                log::to_stderr(
+                stderr::to_stderr(
                     MessageType::ERROR,
                     &format!("cannot start the output thread: {error}"),
                 );
@@ -243,7 +243,7 @@ fn write_blocking(
             }
             std::io::Result::Ok(())
         })();
-        log::slow_with(
+        stderr::slow_with(
             || format!("writing a message of {length} bytes"),
             started.elapsed(),
         );

@@ -5,7 +5,7 @@
 //! `pipe-buffers`) turns pieces off, for that measurement only. The crate denies `unsafe_code`;
 //! `transport/mod.rs` allows it for this module alone.
 
-use crate::lsp::transport::measured_without;
+use crate::lsp::transport::measure::measured_without;
 
 /// Blocks from this size on are mapped and unmapped on their own, so freeing them returns the memory.
 #[cfg(all(target_os = "linux", target_env = "gnu"))]
