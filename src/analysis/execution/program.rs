@@ -288,13 +288,17 @@ impl FlowBuilder {
     }
 }
 
+/// A walk over a program's lines in order: it hands each line (index, text without terminator) to the
+/// visitor until the visitor returns false or the lines end.
+pub type LineWalk<'a> = &'a dyn Fn(&mut dyn FnMut(usize, &str) -> bool);
+
 /// Whether the program whose `line_count` lines `walk` hands out in order (stopping when the visitor
 /// returns false) has flow, as [`ProgramUnit`]'s `flow.has_flow` would say, with the names of macros
 /// defined outside it (`outside`): read without a copy of the text, which for a large program open
 /// in the editor is tens of MB. It stops at the first line with flow: a flow that was found stays.
 pub fn lines_have_flow<'n>(
     line_count: usize,
-    walk: &dyn Fn(&mut dyn FnMut(usize, &str) -> bool),
+    walk: LineWalk<'_>,
     config: &MachineConfig,
     outside: impl Iterator<Item = &'n str>,
 ) -> bool {
