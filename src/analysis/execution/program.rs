@@ -183,7 +183,7 @@ impl ProgramUnit {
     }
 
     fn build_flow_index(&self) -> FlowIndex {
-        let mut builder = FlowBuilder::new(self.line_count());
+        let mut builder = FlowBuilder::new(self.line_count(), true);
         for index in 0..self.line_count() {
             builder.line(index, self.line(index), &self.context);
         }
@@ -203,11 +203,14 @@ struct FlowBuilder {
     in_definitions: bool,
     /// The block numbers in program order; indexed only when something can jump to them.
     numbered: Vec<(u64, usize)>,
+    /// Whether `numbered` is kept: not when only `has_flow` is asked for (a million entries in a CAM
+    /// program, 16 MB, for nothing).
+    keeps_numbers: bool,
     last_line: usize,
 }
 
 impl FlowBuilder {
-    fn new(line_count: usize) -> FlowBuilder {
+    fn new(line_count: usize, keeps_numbers: bool) -> FlowBuilder {
         FlowBuilder {
             flow: FlowIndex::default(),
             parser: LineParser::new(),
@@ -216,6 +219,7 @@ impl FlowBuilder {
             broken: false,
             in_definitions: true,
             numbered: Vec::new(),
+            keeps_numbers,
             last_line: line_count.saturating_sub(1),
         }
     }
@@ -231,7 +235,7 @@ impl FlowBuilder {
             flow.labels.entry(name).or_default().push(index);
             flow.has_flow = true;
         }
-        if let Some(number) = self.block.number {
+        if let Some(number) = self.block.number.filter(|_| self.keeps_numbers) {
             self.numbered.push((number.value, index));
         }
         let statements = self.block.interpreted_statements();
@@ -313,7 +317,7 @@ pub fn lines_have_flow<'n>(
         }
         true
     });
-    let mut builder = FlowBuilder::new(line_count);
+    let mut builder = FlowBuilder::new(line_count, false);
     walk(&mut |index, line| {
         builder.line(index, line, &context);
         !builder.flow.has_flow
