@@ -21,7 +21,6 @@
 
 pub(crate) mod document_state;
 pub(crate) mod facts;
-pub(crate) mod findings_change;
 mod first_analysis;
 mod incremental;
 pub(crate) mod line_source;
@@ -32,6 +31,5 @@ mod tests;
 
 pub use crate::analysis::resolution::{ResolutionMode, WordResolution};
 pub use document_state::{DocumentAnalysis, CHECKPOINT_INTERVAL, INTERRUPTIBLE_AFTER_LINES};
-pub use findings_change::FindingsChange;
 pub use line_source::{LineSource, TextLines};
 pub use report::{summarize, BlockReport, StateSummary};

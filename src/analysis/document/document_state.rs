@@ -3,9 +3,6 @@
 //! answers without reading the text. Reading the text is in `first_analysis.rs` (the whole document),
 //! `incremental.rs` (after an edit) and `pass.rs` (one forward pass).
 
-use crate::analysis::document::findings_change::{
-    next_findings_revision, FindingsChange, FindingsHistory,
-};
 use crate::analysis::document::line_source::LineSource;
 use crate::analysis::engine::snapshot::EngineSnapshot;
 use crate::analysis::program_kind::ProgramKind;
@@ -67,8 +64,6 @@ pub struct DocumentAnalysis {
     /// line it did not read to the end of what it had to read. Until the next update reads them, the
     /// findings and checkpoints from there on are those of before that update.
     pub(super) unread: Option<Range<usize>>,
-    /// The number of the findings as they are now, and how the last update changed them.
-    pub(super) findings_history: FindingsHistory,
 }
 
 impl DocumentAnalysis {
@@ -88,33 +83,7 @@ impl DocumentAnalysis {
             combined: None,
             lines_read: 0,
             unread: None,
-            findings_history: FindingsHistory::new(),
         }
-    }
-
-    /// The number of the findings as they are now; it changes with every update and is never that of
-    /// another analysis.
-    pub fn findings_revision(&self) -> u64 {
-        self.findings_history.revision
-    }
-
-    /// How the findings changed since they had the revision `earlier`, when that is known: they were
-    /// the same, or exactly one update came since and it says how it changed them.
-    pub fn findings_change_since(&self, earlier: u64) -> Option<FindingsChange> {
-        let history = &self.findings_history;
-        if earlier == history.revision {
-            return Some(FindingsChange::none(self.diagnostics().len()));
-        }
-        history.change.filter(|_| earlier == history.previous)
-    }
-
-    /// Gives the findings a new revision after a change described by `change` (`None`: not known).
-    pub(super) fn note_findings_change(&mut self, change: Option<FindingsChange>) {
-        self.findings_history = FindingsHistory {
-            revision: next_findings_revision(),
-            previous: self.findings_history.revision,
-            change,
-        };
     }
 
     /// Analyses the whole document.
@@ -138,7 +107,6 @@ impl DocumentAnalysis {
     ) -> DocumentAnalysis {
         let mut analysis = DocumentAnalysis::empty(config, kind);
         analysis.recompute_in_parallel(source, helper_source);
-        analysis.note_findings_change(None);
         analysis
     }
 
@@ -194,8 +162,7 @@ impl DocumentAnalysis {
     /// end-of-program findings (the common case) nothing is copied.
     pub(super) fn combine(&mut self) {
         // S180 is reported once per axis and file, with the count of its blocks: a fact of the whole
-        // document, worked out here from the findings of every line (the update then says no
-        // FindingsChange, and the server compares the published findings instead).
+        // document, worked out here from the findings of every line.
         let axes = crate::syntax::unconfigured_axes::any(&self.body);
         self.combined = (!self.tail.is_empty() || axes).then(|| {
             let mut combined = self.body.clone();

@@ -40,7 +40,6 @@ impl DocumentAnalysis {
         self.tail = pass.tail;
         self.lines_read = pass.lines_read;
         self.combine();
-        self.note_findings_change(None);
     }
 
     /// Reads the whole-document facts (macros, `PROC` headers) and gives the state before line 0.

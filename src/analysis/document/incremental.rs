@@ -5,7 +5,6 @@
 
 use crate::analysis::document::document_state::{Checkpoint, DocumentAnalysis};
 use crate::analysis::document::facts::line_flags_of;
-use crate::analysis::document::findings_change::FindingsChange;
 use crate::analysis::document::line_source::LineSource;
 use crate::analysis::document::pass::{PassLimits, PositionReads};
 use crate::analysis::position_reads::READS_ALL;
@@ -13,10 +12,9 @@ use crate::diagnostics::LineDiagnostic;
 use std::ops::Range;
 
 /// What a reading from a checkpoint on did: whether it read all it had to (see
-/// [`DocumentAnalysis::update_interruptible`]), and how it changed `body`, when that is simple to say.
+/// [`DocumentAnalysis::update_interruptible`]).
 pub(super) struct Reread {
     finished: bool,
-    body_change: Option<FindingsChange>,
 }
 
 /// The old findings at lines from `from` on (old numbering) are `by` lines further in the new text.
@@ -39,9 +37,6 @@ impl DocumentAnalysis {
         inserted: usize,
         interrupted: &dyn Fn() -> bool,
     ) -> bool {
-        // The findings are `body` itself when there are no end-of-program findings; only then does
-        // a change of `body` say how the findings changed.
-        let body_only_before = self.combined.is_none();
         let old_count = self.line_flags.len();
         let new_count = source.line_count();
         let fits = first_line
@@ -115,12 +110,6 @@ impl DocumentAnalysis {
             },
             interrupted,
         );
-        let body_only_after = self.tail.is_empty() && self.combined.is_none();
-        self.note_findings_change(
-            reread
-                .body_change
-                .filter(|_| body_only_before && body_only_after),
-        );
         reread.finished
     }
 
@@ -163,7 +152,6 @@ impl DocumentAnalysis {
         let prefix_end = self.body.partition_point(|item| item.line < start.line);
         // From an interruption on, everything stays as it was, like after a convergence.
         let converged_at = pass.converged_at.or(pass.interrupted_at);
-        let mut body_change = None;
         match converged_at {
             // The common case, an edit whose effect ends at a checkpoint: the old findings from the
             // point of convergence on stay (all of them, moved), the pass's replace those before, and
@@ -175,12 +163,6 @@ impl DocumentAnalysis {
                             || item.line.saturating_add_signed(delta) < converged_line
                     });
                 let fresh = pass.diagnostics.len();
-                body_change = Some(FindingsChange {
-                    start: prefix_end,
-                    old_end: kept_from,
-                    new_end: prefix_end + fresh,
-                    line_delta: delta,
-                });
                 self.body.splice(prefix_end..kept_from, pass.diagnostics);
                 if delta != 0 {
                     for item in &mut self.body[prefix_end + fresh..] {
@@ -226,16 +208,10 @@ impl DocumentAnalysis {
         self.lines_read += pass.lines_read;
         if let (None, Some(line)) = (pass.converged_at, pass.interrupted_at) {
             self.unread = Some(line..changed_end.max(line + 1));
-            return Reread {
-                finished: false,
-                body_change,
-            };
+            return Reread { finished: false };
         }
         self.combine();
-        Reread {
-            finished: true,
-            body_change,
-        }
+        Reread { finished: true }
     }
 
     /// Replaces the old findings from `prefix_end` on by the `fresh` ones of a pass, keeping the old
