@@ -17,6 +17,7 @@
 //! - `renumber.rs`, `format.rs`: whole-document rewrites returned as text.
 
 pub mod block_numbers;
+pub mod block_words;
 mod comment_sections;
 pub mod completion;
 pub mod cross_file_diagnostics;
@@ -24,10 +25,14 @@ pub mod cycles;
 pub mod documentation;
 pub mod execution;
 pub mod format;
+pub mod hover;
+pub mod inlay;
 pub mod jumps;
 pub mod language_docs;
 pub mod navigation;
+pub mod numbers;
 pub mod outline;
+pub mod program_run;
 pub mod renumber;
 pub mod semantic_tokens;
 pub mod signature_help;
