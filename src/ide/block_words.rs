@@ -40,7 +40,10 @@ pub struct AxisWord {
 #[derive(Debug, Clone, PartialEq)]
 pub enum WordAt {
     Axis(AxisWord),
-    GCode { code: GCode, span: Span },
+    GCode {
+        code: GCode,
+        span: Span,
+    },
     /// Any other part of the block (block number, label, keyword, call, ...).
     Other,
 }

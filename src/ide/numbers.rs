@@ -93,7 +93,7 @@ mod tests {
         assert_eq!(short(-12.25), "-12.25");
         assert_eq!(short(100.0), "100");
         assert_eq!(short_to(2.50004, 4), "2.5");
-        assert_eq!(short_to(2.50005, 4), "2.5001");
+        assert_eq!(short_to(2.50006, 4), "2.5001");
         assert_eq!(short_to(-0.00001, 4), "0");
         assert_eq!(short_to(12.0, 0), "12");
         assert!(same(58.0, 57.999_999_999_99));

@@ -45,10 +45,9 @@ pub fn hover_at(
     }
     let report = analysis.block_report(lines, line);
     let special = match words.at(offset, config) {
-        Some(WordAt::Axis(word)) => Some((
-            axis_hover(&word, &words, &report, config),
-            Some(word.span),
-        )),
+        Some(WordAt::Axis(word)) => {
+            Some((axis_hover(&word, &words, &report, config), Some(word.span)))
+        }
         Some(WordAt::GCode { code, span }) => Some((gcode_hover(code, &report), Some(span))),
         Some(WordAt::Other) | None => None,
     };

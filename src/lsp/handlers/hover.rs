@@ -1,12 +1,12 @@
 //! The hover: `ide::hover::hover_at` on the analysed document, with positions converted and the
 //! answer wrapped in LSP types.
 
+use crate::analysis::document::LineSource;
 use crate::diagnostics::Span;
 use crate::ide::documentation::Documentation;
 use crate::ide::hover::hover_at;
 use crate::lsp::convert::{character_to_byte, span_to_range, PositionEncoding};
 use crate::lsp::documents::Analysed;
-use crate::analysis::document::LineSource;
 use tower_lsp_server::ls_types::{Hover, HoverContents, MarkupContent, MarkupKind, Position};
 
 /// The hover at `position` of the analysed text, `None` on a line without words. `documentation`
