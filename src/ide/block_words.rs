@@ -51,10 +51,14 @@ pub enum WordAt {
 impl<'a> BlockWords<'a> {
     /// Parses `line` as a block of a program for the machine `config`.
     pub fn parse(line: &'a str, config: &MachineConfig) -> BlockWords<'a> {
-        let context = SyntaxContext::new(config);
+        BlockWords::parse_in(line, &SyntaxContext::new(config))
+    }
+
+    /// Parses `line` with a context prepared once for many lines.
+    pub fn parse_in(line: &'a str, context: &SyntaxContext) -> BlockWords<'a> {
         let mut block = Block::default();
         let mut findings = Vec::new();
-        LineParser::new().parse(line, &context, &mut block, &mut findings);
+        LineParser::new().parse(line, context, &mut block, &mut findings);
         BlockWords { line, block }
     }
 

@@ -10,6 +10,7 @@ use crate::ide::execution::DocumentExecution;
 use crate::ide::hover::block::machine_differs;
 use crate::ide::numbers::{same, short};
 use crate::ide::program_run::ProgramRun;
+use crate::syntax::SyntaxContext;
 use std::ops::Range;
 
 /// Which moving blocks get a hint.
@@ -63,12 +64,13 @@ pub fn end_point_hints(
             return hints;
         }
     }
+    let context = SyntaxContext::new(config);
     moves
         .iter()
         .filter_map(|movement| {
             if scope == HintScope::NotPlain {
                 let text = lines.line(movement.line);
-                if is_plain(movement, &BlockWords::parse(&text, config), config) {
+                if is_plain(movement, &BlockWords::parse_in(&text, &context), config) {
                     return None;
                 }
             }
