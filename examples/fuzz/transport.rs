@@ -4,7 +4,8 @@
 //! `framing`: a stream of messages, some well framed, some with damaged headers, wrong or huge
 //! lengths, garbage and blank lines. The framer must give the same frames however the bytes are cut,
 //! give back every well-framed message of an undamaged stream exactly, keep its buffer bounded, and
-//! every body must read as a message or be answered with an error response that serializes.
+//! every body must read as a message or be answered with an error response that serializes, and read
+//! in its own buffer (a large `didOpen`'s text unescaped in place) as it reads the ordinary way.
 //!
 //! `publish`: a program's lines with findings made from the text (spans anywhere, also inside
 //! characters; messages with quotes, control characters and non-ASCII letters), published three times
@@ -14,8 +15,8 @@
 use super::random::Random;
 use sinumerik_lsp::diagnostics::{Code, Diagnostic, LineDiagnostic, Severity, Span};
 use sinumerik_lsp::lsp::{
-    diagnostic_ranges, publication_body, read_message, Frame, Framer, InitializeGate,
-    PositionEncoding, Publisher,
+    diagnostic_ranges, publication_body, read_message, read_owned_message, Frame, Framer,
+    InitializeGate, PositionEncoding, Publisher,
 };
 use std::borrow::Cow;
 use tower_lsp_server::ls_types::{self, NumberOrString, PublishDiagnosticsParams, Uri};
@@ -35,6 +36,9 @@ fn body(random: &mut Random, donor: &[String]) -> String {
         random.pick(donor).clone()
     };
     let text = serde_json::to_string(&text).unwrap_or_default();
+    if random.one_in(3) {
+        return open_body(random, &text);
+    }
     match random.below(8) {
         0 => format!(
             r#"{{"jsonrpc":"2.0","id":{},"method":"initialize","params":{{"capabilities":{{}}}}}}"#,
@@ -57,6 +61,130 @@ fn body(random: &mut Random, donor: &[String]) -> String {
         _ => format!(
             r#"{{"jsonrpc":"2.0","id":null,"method":"textDocument/hover","params":{{"x":{text}}}}}"#
         ),
+    }
+}
+
+/// A `didOpen` as a client sends it or slightly wrong: its text a literal with every kind of escape
+/// (surrogate pairs, halves of one, escapes JSON does not have, raw control characters), its other
+/// fields missing, doubled or of the wrong type. A large one is read in its own buffer
+/// (`transport/open_in_place.rs`); it must give what the ordinary reading gives.
+fn open_body(random: &mut Random, program_literal: &str) -> String {
+    const PIECES: [&str; 22] = [
+        "N10 G0 X1",
+        "\\n",
+        "\\r\\n",
+        "\\\"",
+        "\\\\",
+        "\\/",
+        "\\b\\f\\t",
+        "\\u00e4",
+        "\\u00C4",
+        "\\ud83d\\udee0",
+        "\\ud83d",
+        "\\udee0",
+        "\\ud83d\\u0041",
+        "ä",
+        "中",
+        "🛠",
+        "\\x",
+        "\u{1}",
+        "\\u12",
+        "\\uZZZZ",
+        "\\u0000",
+        " ",
+    ];
+    let literal = if random.one_in(4) {
+        program_literal.to_string()
+    } else {
+        let count = random.length(0, 40);
+        let inner: String = (0..count).map(|_| *random.pick(&PIECES)).collect();
+        format!("\"{inner}\"")
+    };
+    let jsonrpc = match random.below(8) {
+        0 => "",
+        1 => r#""jsonrpc":"1.0","#,
+        _ => r#""jsonrpc":"2.0","#,
+    };
+    let id = match random.below(8) {
+        0 => r#""id":null,"#,
+        1 => r#""id":5,"#,
+        _ => "",
+    };
+    let method = match random.below(10) {
+        0 => r#""method":"textDocument\/didOpen""#,
+        1 => r#""method":"textDocument/didChange""#,
+        _ => r#""method":"textDocument/didOpen""#,
+    };
+    let version = match random.below(10) {
+        0 => "1.5",
+        1 => r#""1""#,
+        2 => "99999999999",
+        _ => "7",
+    };
+    let uri = match random.below(10) {
+        0 => r#""not a uri""#,
+        1 => r#""file:\/\/\/a%20b.mpf""#,
+        _ => r#""file:///a.mpf""#,
+    };
+    let extra = match random.below(8) {
+        0 => format!(r#","text":{literal}"#),
+        1 => r#","extra":[1,{"a":null}]"#.to_string(),
+        _ => String::new(),
+    };
+    let text = if random.one_in(12) {
+        "5".to_string()
+    } else {
+        literal
+    };
+    format!(
+        r#"{{{jsonrpc}{id}{method},"params":{{"textDocument":{{"uri":{uri},"languageId":"sinumerik","version":{version},"text":{text}{extra}}}}}}}"#
+    )
+}
+
+/// A body read by the caller's own buffer (`read_owned_message`) must give what the ordinary reading
+/// gives: the same request with the same `didOpen` parameters, the same response, or the same error.
+fn same_reading(body: &[u8]) -> Result<(), String> {
+    use sinumerik_lsp::lsp::Incoming;
+    let ordinary = read_message(body, &mut InitializeGate::default());
+    let (owned, _) = read_owned_message(body.to_vec(), &mut InitializeGate::default());
+    let differs = |what: &str| {
+        Err(format!(
+            "reading in place differs ({what}) for {}",
+            String::from_utf8_lossy(body)
+        ))
+    };
+    match (ordinary, owned) {
+        (Incoming::Request(a), Incoming::Request(b)) => {
+            if a.method() != b.method() || a.id() != b.id() {
+                return differs("method or id");
+            }
+            let open = |request: &tower_lsp_server::jsonrpc::Request| {
+                request
+                    .params()
+                    .cloned()
+                    .map(serde_json::from_value::<ls_types::DidOpenTextDocumentParams>)
+            };
+            match (open(&a), open(&b)) {
+                (Some(Ok(a)), Some(Ok(b))) if a == b => Ok(()),
+                (Some(Err(_)), Some(Err(_))) | (None, None) => Ok(()),
+                _ => differs("the didOpen parameters"),
+            }
+        }
+        (Incoming::Response(a), Incoming::Response(b)) => {
+            if serde_json::to_value(&a).ok() == serde_json::to_value(&b).ok() {
+                Ok(())
+            } else {
+                differs("the response")
+            }
+        }
+        (Incoming::Invalid { response: a, .. }, Incoming::Invalid { response: b, .. }) => {
+            if serde_json::to_value(&a).ok() == serde_json::to_value(&b).ok() {
+                Ok(())
+            } else {
+                differs("the error response")
+            }
+        }
+        _ => differs("the kind of message"),
     }
 }
 
@@ -162,6 +290,7 @@ pub fn check_framing(text: &str) -> Result<(), String> {
     let mut gate = InitializeGate::default();
     for frame in &whole {
         if let Frame::Body(body) = frame {
+            same_reading(body)?;
             if let sinumerik_lsp::lsp::Incoming::Invalid { response, .. } =
                 read_message(body, &mut gate)
             {

@@ -8,7 +8,7 @@ use crate::analysis::execution::entry::RunSetup;
 use crate::analysis::execution::first_pass::PassState;
 use crate::analysis::execution::library_macros::LibraryMacros;
 use crate::analysis::execution::{entry_assumptions, ExecutionOptions, RESET_SOURCE};
-use crate::analysis::execution::{program::ProgramUnit, ExecutedMove};
+use crate::analysis::execution::{program::lines_have_flow, ExecutedMove};
 use crate::analysis::execution::{resume_run, run_recorded, RecordedRun};
 use crate::analysis::library::ProgramLibrary;
 use crate::analysis::ProgramKind;
@@ -47,7 +47,17 @@ pub fn execute_document(
     options: &ExecutionOptions,
     earlier: Option<&DocumentExecution>,
 ) -> DocumentExecution {
-    let mut text = String::new();
+    if runs_in_order(source, config, kind, library) {
+        return DocumentExecution::InOrder;
+    }
+    // The text is made once at its final size: a string that grows by doubling would hold up to
+    // twice the text while it is copied into the shared one.
+    let mut size = 0;
+    source.for_each_line(0, &mut |_, line| {
+        size += line.len() + 1;
+        true
+    });
+    let mut text = String::with_capacity(size);
     source.for_each_line(0, &mut |_, line| {
         text.push_str(line);
         text.push('\n');
@@ -77,37 +87,17 @@ pub fn execute_document(
         ),
         _ => None,
     };
-    let run = match resumed {
-        Some(run) => run,
-        None => {
-            if !subprogram {
-                // A macro of a definition file reads like a call: a program that uses one runs.
-                let macros = LibraryMacros::read(library, config);
-                let unit = ProgramUnit::with_macro_names(
-                    String::new(),
-                    None,
-                    Arc::clone(&text),
-                    config,
-                    macros.names(),
-                );
-                // Roundings and chamfers change the path, which only the run's corner stage makes.
-                if !unit.flow.has_flow
-                    && !crate::analysis::simulation::mentions_contour_words(&text, config)
-                {
-                    return DocumentExecution::InOrder;
-                }
-            }
-            run_recorded(
-                Arc::clone(&text),
-                config,
-                kind,
-                library,
-                options,
-                &setup,
-                None,
-            )
-        }
-    };
+    let run = resumed.unwrap_or_else(|| {
+        run_recorded(
+            Arc::clone(&text),
+            config,
+            kind,
+            library,
+            options,
+            &setup,
+            None,
+        )
+    });
     // From the call sites, the run says what it started from; else the reset state is assumed.
     let assumed = match setup.entry {
         Some(_) => run.execution.assumed.clone(),
@@ -125,6 +115,38 @@ pub fn execute_document(
         order,
         path_order,
     }
+}
+
+/// Whether the document runs in program order, so that its moves are those of its analysis: a main
+/// program (by its kind, and without a `PROC` line) without flow (`lines_have_flow`, with the macros
+/// of the library's definition files, which read like calls) and without the rounding and chamfer
+/// words that only the run's corner stage makes into a path. Read from the lines themselves: the
+/// copy of the text that a run needs is tens of MB for a large CAM program, and most never run.
+fn runs_in_order(
+    source: &dyn LineSource,
+    config: &MachineConfig,
+    kind: ProgramKind,
+    library: &dyn ProgramLibrary,
+) -> bool {
+    if kind == ProgramKind::Subprogram {
+        return false;
+    }
+    let mut needs_run = false;
+    source.for_each_line(0, &mut |_, line| {
+        needs_run = crate::analysis::program_kind::is_proc_header(line)
+            || crate::analysis::simulation::mentions_contour_words(line, config);
+        !needs_run
+    });
+    if needs_run {
+        return false;
+    }
+    let macros = LibraryMacros::read(library, config);
+    !lines_have_flow(
+        source.line_count(),
+        &|visit| source.for_each_line(0, visit),
+        config,
+        macros.names(),
+    )
 }
 
 /// The moves grouped by their outer line (a counting sort: execution order stays within a line).

@@ -43,7 +43,7 @@ pub use handlers::rewrite_commands::{FORMAT_COMMAND, RENUMBER_COMMAND};
 pub use publish::{publication as publication_body, ranges as diagnostic_ranges, Publisher};
 pub use text_document::{apply_changes, DocumentText, LineChange, RopeLineChange, RopeLines};
 pub use transport::framing::{Frame, Framer};
-pub use transport::message::{read_message, Incoming, InitializeGate};
+pub use transport::message::{read_message, read_owned_message, Incoming, InitializeGate};
 
 use tokio::io::{AsyncRead, AsyncWrite};
 use tower_lsp_server::LspService;

@@ -183,61 +183,95 @@ impl ProgramUnit {
     }
 
     fn build_flow_index(&self) -> FlowIndex {
-        let mut flow = FlowIndex::default();
-        let mut parser = LineParser::new();
-        let mut block = Block::default();
-        // Open structures: (keyword, line, the ELSE line of an IF).
-        let mut open: Vec<(StructureKeyword, usize, Option<usize>)> = Vec::new();
-        let mut broken = false;
-        let mut in_definitions = true;
-        // The block numbers in program order; indexed only when something can jump to them.
-        let mut numbered: Vec<(u64, usize)> = Vec::new();
-        let last_line = self.line_count().saturating_sub(1);
+        let mut builder = FlowBuilder::new(self.line_count());
         for index in 0..self.line_count() {
-            self.parse(&mut parser, index, &mut block);
-            if let Some(label) = block.label {
-                let name = self.line(index)[label.start()..label.end()].to_ascii_uppercase();
-                flow.labels.entry(name).or_default().push(index);
-                flow.has_flow = true;
+            builder.line(index, self.line(index), &self.context);
+        }
+        builder.finish(self.line_count())
+    }
+}
+
+/// The flow index built line by line in program order: by [`ProgramUnit`] over its text, and by
+/// [`lines_have_flow`] over lines that are not one text (an editor's rope).
+struct FlowBuilder {
+    flow: FlowIndex,
+    parser: LineParser,
+    block: Block,
+    /// Open structures: (keyword, line, the ELSE line of an IF).
+    open: Vec<(StructureKeyword, usize, Option<usize>)>,
+    broken: bool,
+    in_definitions: bool,
+    /// The block numbers in program order; indexed only when something can jump to them.
+    numbered: Vec<(u64, usize)>,
+    last_line: usize,
+}
+
+impl FlowBuilder {
+    fn new(line_count: usize) -> FlowBuilder {
+        FlowBuilder {
+            flow: FlowIndex::default(),
+            parser: LineParser::new(),
+            block: Block::default(),
+            open: Vec::new(),
+            broken: false,
+            in_definitions: true,
+            numbered: Vec::new(),
+            last_line: line_count.saturating_sub(1),
+        }
+    }
+
+    /// Takes line `index` (its text without the terminator), the lines before it taken already.
+    fn line(&mut self, index: usize, text: &str, context: &SyntaxContext) {
+        let mut findings = Vec::new();
+        self.parser
+            .parse(text, context, &mut self.block, &mut findings);
+        let flow = &mut self.flow;
+        if let Some(label) = self.block.label {
+            let name = text[label.start()..label.end()].to_ascii_uppercase();
+            flow.labels.entry(name).or_default().push(index);
+            flow.has_flow = true;
+        }
+        if let Some(number) = self.block.number {
+            self.numbered.push((number.value, index));
+        }
+        let statements = self.block.interpreted_statements();
+        let mut executable = false;
+        for statement in statements {
+            match statement {
+                Statement::Definition { .. }
+                | Statement::MacroDefinition { .. }
+                | Statement::ProcedureHeader { .. }
+                | Statement::ExternDeclaration { .. } => {}
+                _ => executable = true,
             }
-            if let Some(number) = block.number {
-                numbered.push((number.value, index));
-            }
-            let statements = block.interpreted_statements();
-            let mut executable = false;
-            for statement in statements {
-                match statement {
-                    Statement::Definition { .. }
-                    | Statement::MacroDefinition { .. }
-                    | Statement::ProcedureHeader { .. }
-                    | Statement::ExternDeclaration { .. } => {}
-                    _ => executable = true,
+            match statement {
+                Statement::Structure { keyword, .. } => {
+                    flow.has_flow = true;
+                    self.broken |= !link_structure(flow, &mut self.open, *keyword, index);
                 }
-                match statement {
-                    Statement::Structure { keyword, .. } => {
-                        flow.has_flow = true;
-                        broken |= !link_structure(&mut flow, &mut open, *keyword, index);
-                    }
-                    Statement::Jump { .. }
-                    | Statement::Call { .. }
-                    | Statement::Return { .. }
-                    | Statement::Instruction { .. } => flow.has_flow = true,
-                    Statement::Address(word) if index != last_line => {
-                        flow.has_flow |=
-                            crate::analysis::execution::outcome::ends_program(word).is_some();
-                    }
-                    _ => {}
+                Statement::Jump { .. }
+                | Statement::Call { .. }
+                | Statement::Return { .. }
+                | Statement::Instruction { .. } => flow.has_flow = true,
+                Statement::Address(word) if index != self.last_line => {
+                    flow.has_flow |=
+                        crate::analysis::execution::outcome::ends_program(word).is_some();
                 }
-            }
-            if in_definitions && executable {
-                in_definitions = false;
-                flow.first_executable = index;
+                _ => {}
             }
         }
-        if in_definitions {
-            flow.first_executable = self.line_count();
+        if self.in_definitions && executable {
+            self.in_definitions = false;
+            flow.first_executable = index;
         }
-        if broken || !open.is_empty() {
+    }
+
+    fn finish(mut self, line_count: usize) -> FlowIndex {
+        let flow = &mut self.flow;
+        if self.in_definitions {
+            flow.first_executable = line_count;
+        }
+        if self.broken || !self.open.is_empty() {
             // Structures that do not nest soundly are reported by the syntax check (12640); the
             // interpreter does not follow them: their lines have no partners.
             flow.partners.retain(|_, _| false);
@@ -246,12 +280,45 @@ impl ProgramUnit {
         // A program without flow runs in order: nothing jumps to a block number, and a CAM program
         // numbers every block (a million entries to build and free for nothing).
         if flow.has_flow {
-            for (value, index) in numbered {
+            for (value, index) in self.numbered {
                 flow.block_numbers.entry(value).or_default().push(index);
             }
         }
-        flow
+        self.flow
     }
+}
+
+/// A walk over a program's lines in order: it hands each line (index, text without terminator) to the
+/// visitor until the visitor returns false or the lines end.
+pub type LineWalk<'a> = &'a dyn Fn(&mut dyn FnMut(usize, &str) -> bool);
+
+/// Whether the program whose `line_count` lines `walk` hands out in order (stopping when the visitor
+/// returns false) has flow, as [`ProgramUnit`]'s `flow.has_flow` would say, with the names of macros
+/// defined outside it (`outside`): read without a copy of the text, which for a large program open
+/// in the editor is tens of MB. It stops at the first line with flow: a flow that was found stays.
+pub fn lines_have_flow<'n>(
+    line_count: usize,
+    walk: LineWalk<'_>,
+    config: &MachineConfig,
+    outside: impl Iterator<Item = &'n str>,
+) -> bool {
+    let mut context = SyntaxContext::new(config);
+    for name in outside {
+        context.add_macro(name);
+    }
+    // A macro may be used before the line that defines it: all definitions first, as with a text.
+    walk(&mut |_, line| {
+        for name in macro_names(line) {
+            context.add_macro(name);
+        }
+        true
+    });
+    let mut builder = FlowBuilder::new(line_count);
+    walk(&mut |index, line| {
+        builder.line(index, line, &context);
+        !builder.flow.has_flow
+    });
+    builder.finish(line_count).has_flow
 }
 
 /// Whether a block has nothing the interpreter treats as flow: only G functions, addresses that do

@@ -1,7 +1,7 @@
 //! The reader: bytes from the client through the framer, each body read into a message.
 
 use crate::lsp::transport::framing::{next_header_in, Frame, Framer};
-use crate::lsp::transport::message::{read_message, Incoming, InitializeGate};
+use crate::lsp::transport::message::{read_message, read_owned_message, Incoming, InitializeGate};
 use crate::lsp::transport::stderr;
 use tokio::io::{AsyncRead, AsyncReadExt};
 use tower_lsp_server::ls_types::MessageType;
@@ -38,14 +38,16 @@ impl<R: AsyncRead + Unpin> MessageReader<R> {
                         let mut moved_gate = std::mem::take(gate);
                         let (incoming, returned_gate, body) =
                             tokio::task::spawn_blocking(move || {
-                                let incoming = read_message(&body, &mut moved_gate);
+                                let (incoming, body) = read_owned_message(body, &mut moved_gate);
                                 (incoming, moved_gate, body)
                             })
                             .await
                             .ok()?;
                         *gate = returned_gate;
-                        self.resynchronize(&incoming, &body);
-                        tokio::task::spawn_blocking(move || drop(body));
+                        if let Some(body) = body {
+                            self.resynchronize(&incoming, &body);
+                            tokio::task::spawn_blocking(move || drop(body));
+                        }
                         incoming
                     } else {
                         let incoming = read_message(&body, gate);

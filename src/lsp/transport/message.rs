@@ -2,6 +2,8 @@
 //! server's requests, or something that is dropped with the error response JSON-RPC asks for. Each
 //! body is parsed once, straight into the framework's types (a `didOpen` of 30 MB included).
 
+use crate::lsp::transport::measure::measured_without;
+use crate::lsp::transport::open_in_place::{read_open_in_place, OpenRead};
 use serde::de::IgnoredAny;
 use serde::Deserialize;
 use std::borrow::Cow;
@@ -92,6 +94,21 @@ pub fn read_message(body: &[u8], gate: &mut InitializeGate) -> Incoming {
         _ => Id::Null,
     };
     invalid(id, problem, body.len())
+}
+
+/// Reads one body that the caller hands over: a large `didOpen` is read in its own buffer
+/// (`open_in_place.rs`), anything else as by [`read_message`]. The body comes back when it was read
+/// the ordinary way (the reader looks into a body that was no message for the next header).
+pub fn read_owned_message(body: Vec<u8>, gate: &mut InitializeGate) -> (Incoming, Option<Vec<u8>>) {
+    if measured_without("open-in-place") {
+        return (read_message(&body, gate), Some(body));
+    }
+    let length = body.len();
+    match read_open_in_place(body) {
+        OpenRead::Request(request) => (Incoming::Request(request), None),
+        OpenRead::LoneSurrogate => (invalid(Id::Null, Problem::NotMessage, length), None),
+        OpenRead::Other(body) => (read_message(&body, gate), Some(body)),
+    }
 }
 
 /// The id to answer a message that is no valid request with: its own, when it has a method and an
