@@ -1,22 +1,28 @@
-//! Data-driven tests of the language features: every file under `fixtures/ide/<feature>/` is a small
-//! workspace with a cursor marker `$0`, and `<file>.expected` holds what the feature answers there,
-//! rendered as text. One helper per feature renders the answer; `UPDATE_EXPECT=1 cargo test --test
+//! Data-driven tests of the language features: every `.nc` or `.mpf` file under
+//! `fixtures/ide/<feature>/` is a small workspace with a cursor marker `$0`, and `<file>.expected`
+//! holds what the feature answers there, rendered as text. One helper per feature renders the answer; `UPDATE_EXPECT=1 cargo test --test
 //! ide_fixtures` rewrites the expectations (review the diff before committing).
 //!
 //! Fixture format: lines up to the first `;;; FILE NAME.EXT` belong to `MAIN.MPF`; each such line
 //! starts another file of the workspace. Directives: `;;; COMPLETE` marks the index complete,
-//! `;;; RENAME NEWNAME` gives the new name for rename fixtures. The cursor `$0` is removed from the
-//! text; its file is the document the feature is asked about.
+//! `;;; RENAME NEWNAME` gives the new name for rename fixtures, `;;; MACHINE turn` takes the lathe's
+//! default configuration instead of the mill's. The cursor `$0` is removed from the text; its file is
+//! the document the feature is asked about (without a cursor: the first file).
 
-use sinumerik_lsp::analysis::document::TextLines;
+use sinumerik_lsp::analysis::document::{DocumentAnalysis, TextLines};
+use sinumerik_lsp::analysis::library::MemoryLibrary;
+use sinumerik_lsp::analysis::ProgramKind;
 use sinumerik_lsp::config::MachineConfig;
 use sinumerik_lsp::ide::completion::completion;
 use sinumerik_lsp::ide::cross_file_diagnostics::cross_file_diagnostics;
 use sinumerik_lsp::ide::documentation::documentation_at;
+use sinumerik_lsp::ide::hover::hover_at;
+use sinumerik_lsp::ide::inlay::{end_point_hints, HintScope};
 use sinumerik_lsp::ide::navigation::{definition, references, rename, workspace_symbols};
 use sinumerik_lsp::ide::outline::{
     document_highlights, document_symbols, folding_ranges, OutlineItem,
 };
+use sinumerik_lsp::ide::program_run::RunOnce;
 use sinumerik_lsp::ide::semantic_tokens::semantic_tokens;
 use sinumerik_lsp::ide::signature_help::signature_help;
 use sinumerik_lsp::ide::{apply_edits, Location, SymbolTable, WorkspaceIndex};
@@ -33,6 +39,7 @@ struct Fixture {
     cursor_byte: usize,
     complete: bool,
     rename_to: Option<String>,
+    turn: bool,
 }
 
 impl Fixture {
@@ -40,6 +47,7 @@ impl Fixture {
         let mut files: Vec<(String, String)> = vec![("MAIN.MPF".to_string(), String::new())];
         let mut complete = false;
         let mut rename_to = None;
+        let mut turn = false;
         for line in text.lines() {
             if let Some(name) = line.strip_prefix(";;; FILE ") {
                 files.push((name.trim().to_string(), String::new()));
@@ -47,6 +55,8 @@ impl Fixture {
                 complete = true;
             } else if let Some(name) = line.strip_prefix(";;; RENAME ") {
                 rename_to = Some(name.trim().to_string());
+            } else if line.trim() == ";;; MACHINE turn" {
+                turn = true;
             } else {
                 let file = &mut files.last_mut().unwrap().1;
                 file.push_str(line);
@@ -74,7 +84,31 @@ impl Fixture {
             cursor_byte,
             complete,
             rename_to,
+            turn,
         }
+    }
+
+    /// The machine the fixture asks for: the mill unless `;;; MACHINE turn`.
+    fn config(&self) -> MachineConfig {
+        if self.turn {
+            MachineConfig::turn()
+        } else {
+            MachineConfig::mill()
+        }
+    }
+
+    /// The other files of the workspace as the library a run calls into, by program name.
+    fn library(&self) -> MemoryLibrary {
+        let mut library = MemoryLibrary::default();
+        for (name, text) in &self.files {
+            if *name != self.cursor_file {
+                let program = name
+                    .rsplit_once('.')
+                    .map_or(name.as_str(), |(stem, _)| stem);
+                library.insert(program, name, text);
+            }
+        }
+        library
     }
 
     fn index(&self, config: &MachineConfig) -> WorkspaceIndex {
@@ -131,17 +165,21 @@ fn check_feature(feature: &str, render: impl Fn(&Fixture, &MachineConfig) -> Str
     let mut paths: Vec<PathBuf> = std::fs::read_dir(&folder)
         .unwrap_or_else(|error| panic!("{}: {error}", folder.display()))
         .map(|entry| entry.unwrap().path())
-        .filter(|path| path.extension().is_some_and(|extension| extension == "nc"))
+        .filter(|path| {
+            path.extension()
+                .is_some_and(|extension| extension == "nc" || extension == "mpf")
+        })
         .collect();
     paths.sort();
     assert!(!paths.is_empty(), "no fixtures in {}", folder.display());
     let update = std::env::var_os("UPDATE_EXPECT").is_some();
-    let config = MachineConfig::mill();
     let mut failures = String::new();
     for path in paths {
         let fixture = Fixture::parse(&std::fs::read_to_string(&path).unwrap());
-        let actual = render(&fixture, &config);
-        let expected_path = path.with_extension("nc.expected");
+        let actual = render(&fixture, &fixture.config());
+        let mut expected_name = path.file_name().unwrap().to_os_string();
+        expected_name.push(".expected");
+        let expected_path = path.with_file_name(expected_name);
         let expected = std::fs::read_to_string(&expected_path).ok();
         if expected.as_deref() == Some(actual.as_str()) {
             continue;
@@ -606,4 +644,69 @@ fn semantic_tokens_of_a_line_range_equal_those_of_the_whole_document() {
         .collect();
     assert!(!middle.is_empty());
     assert_eq!(middle, expected);
+}
+
+#[test]
+fn hovers() {
+    check_feature("hover", |fixture, config| {
+        let lines = TextLines::new(fixture.cursor_text());
+        let kind = ProgramKind::from_file_name(&fixture.cursor_file);
+        let analysis = DocumentAnalysis::new(&lines, Arc::new(config.clone()), kind);
+        let library = fixture.library();
+        let run = RunOnce::new(&lines, config, kind, &library);
+        let index = fixture.index(config);
+        let found = hover_at(
+            &lines,
+            &analysis,
+            &run,
+            fixture.cursor_line,
+            fixture.cursor_byte,
+            |line_text, line, byte| {
+                documentation_at(&index, &fixture.cursor_file, line_text, line, byte)
+            },
+        );
+        match found {
+            None => "(none)\n".to_string(),
+            Some(hover) => {
+                let about = hover.span.map_or_else(
+                    || "the block".to_string(),
+                    |span| {
+                        format!(
+                            "{:?}",
+                            &fixture.cursor_line_text()[span.start()..span.end()]
+                        )
+                    },
+                );
+                format!("hover on {about}\n\n{}\n", hover.markdown)
+            }
+        }
+    });
+}
+
+#[test]
+fn inlay_hints() {
+    check_feature("inlay", |fixture, config| {
+        let lines = TextLines::new(fixture.cursor_text());
+        let kind = ProgramKind::from_file_name(&fixture.cursor_file);
+        let analysis = DocumentAnalysis::new(&lines, Arc::new(config.clone()), kind);
+        let library = fixture.library();
+        let run = RunOnce::new(&lines, config, kind, &library);
+        let mut out = String::new();
+        for (title, scope) in [
+            ("not plain (the default)", HintScope::NotPlain),
+            ("all", HintScope::All),
+        ] {
+            let _ = writeln!(out, "{title}:");
+            for hint in end_point_hints(&lines, &analysis, &run, 0..usize::MAX, scope) {
+                let _ = writeln!(
+                    out,
+                    "  {}: {} [{}]",
+                    hint.line + 1,
+                    hint.label,
+                    hint.tooltip
+                );
+            }
+        }
+        out
+    });
 }

@@ -2,14 +2,19 @@
 //! multi-byte characters, unbalanced structures, huge lines. Every feature is run at every byte of
 //! every line of a set of hostile programs.
 
-use sinumerik_lsp::analysis::document::TextLines;
+use sinumerik_lsp::analysis::document::{DocumentAnalysis, TextLines};
+use sinumerik_lsp::analysis::library::NoLibrary;
+use sinumerik_lsp::analysis::ProgramKind;
 use sinumerik_lsp::config::MachineConfig;
 use sinumerik_lsp::ide::completion::completion;
 use sinumerik_lsp::ide::cross_file_diagnostics::cross_file_diagnostics;
 use sinumerik_lsp::ide::documentation::documentation_at;
 use sinumerik_lsp::ide::format::format_text;
+use sinumerik_lsp::ide::hover::hover_at;
+use sinumerik_lsp::ide::inlay::{end_point_hints, HintScope};
 use sinumerik_lsp::ide::navigation::{definition, highlights, references, rename};
 use sinumerik_lsp::ide::outline::{document_symbols, folding_ranges};
+use sinumerik_lsp::ide::program_run::RunOnce;
 use sinumerik_lsp::ide::renumber::{renumber_text, NumberingMode, RenumberOptions};
 use sinumerik_lsp::ide::semantic_tokens::semantic_tokens;
 use sinumerik_lsp::ide::signature_help::signature_help;
@@ -91,6 +96,46 @@ fn every_feature_at_every_byte_of_hostile_programs_answers_without_panic() {
                 let _ = highlights(&index, "A.MPF", line_index, byte);
                 let _ = rename(&index, &config, "A.MPF", line_index, byte, "NEW_NAME");
                 let _ = rename(&index, &config, "A.MPF", line_index, byte, "ü");
+            }
+        }
+    }
+}
+
+#[test]
+fn hover_and_inlay_hints_answer_within_the_line_on_hostile_programs() {
+    for config in [MachineConfig::mill(), MachineConfig::turn()] {
+        for (number, text) in hostile_programs().iter().enumerate() {
+            for kind in [ProgramKind::Main, ProgramKind::Subprogram] {
+                let lines = TextLines::new(text);
+                let analysis = DocumentAnalysis::new(&lines, Arc::new(config.clone()), kind);
+                let run = RunOnce::new(&lines, &config, kind, &NoLibrary);
+                for (line_index, (start, end)) in line_ranges(text).enumerate() {
+                    let line = &text[start..end];
+                    for byte in (0..=line.len()).filter(|byte| line.is_char_boundary(*byte)) {
+                        let Some(hover) =
+                            hover_at(&lines, &analysis, &run, line_index, byte, |_, _, _| None)
+                        else {
+                            continue;
+                        };
+                        assert!(!hover.markdown.is_empty(), "program {number}");
+                        if let Some(span) = hover.span {
+                            assert!(
+                                line.get(span.start()..span.end()).is_some(),
+                                "program {number} line {line_index}: {span:?} outside the line"
+                            );
+                        }
+                    }
+                }
+                let line_count = line_ranges(text).count();
+                for scope in [HintScope::NotPlain, HintScope::All] {
+                    for hint in end_point_hints(&lines, &analysis, &run, 0..usize::MAX, scope) {
+                        assert!(hint.line < line_count, "program {number}");
+                        assert!(hint.label.starts_with('⟶'), "program {number}");
+                    }
+                }
+                assert!(
+                    hover_at(&lines, &analysis, &run, line_count + 1, 0, |_, _, _| None).is_none()
+                );
             }
         }
     }

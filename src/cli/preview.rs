@@ -10,7 +10,8 @@ use crate::analysis::simulation::time::{TimeModel, TimeTotals};
 use crate::analysis::{diagnose_program, ProgramKind};
 use crate::config::{discover_config_file, load_config_file, MachineConfig};
 use crate::diagnostics::{LineDiagnostic, Severity};
-use crate::io::preview_json::{self, round};
+use crate::ide::numbers::{microseconds, without_noise};
+use crate::io::preview_json;
 use crate::io::source_file::read_source_file;
 use std::io::{self, Write};
 use std::path::{Path, PathBuf};
@@ -197,13 +198,13 @@ fn write_csv_row(
             .iter()
             .find(|(name, _)| name.as_ref() == axis.name.as_str())
         {
-            Some((_, value)) => write!(out, ",{}", round(*value))?,
+            Some((_, value)) => write!(out, ",{}", without_noise(*value))?,
             None => write!(out, ",")?,
         }
     }
     let feed = movement
         .feed
-        .map(|feed| round(feed).to_string())
+        .map(|feed| without_noise(feed).to_string())
         .unwrap_or_default();
     write!(out, ",{feed},{}", movement.uncertain.join(" "))?;
     let pass = if executed.pass > 0 {
@@ -227,7 +228,7 @@ fn write_csv_row(
     )?;
     match time_s {
         // Microseconds, as the JSON writes them.
-        Some(seconds) => writeln!(out, ",{}", (seconds * 1e6).round() / 1e6),
+        Some(seconds) => writeln!(out, ",{}", microseconds(seconds)),
         None => writeln!(out, ","),
     }
 }

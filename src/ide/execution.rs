@@ -267,15 +267,9 @@ impl DocumentExecution {
     }
 }
 
-/// Values as the hover writes them: at most four decimals, no trailing zeros.
+/// Values as the run's summary writes them: at most four decimals, no trailing zeros.
 fn short(value: f64) -> String {
-    let text = format!("{value:.4}");
-    let text = text.trim_end_matches('0').trim_end_matches('.');
-    if text == "-0" {
-        "0".to_string()
-    } else {
-        text.to_string()
-    }
+    crate::ide::numbers::short_to(value, 4)
 }
 
 fn end_text(executed: &ExecutedMove) -> String {

@@ -1,6 +1,6 @@
 //! Language features for editors and the command line, over the core's types: symbols, a workspace
 //! index with navigation and rename, completion, outline, semantic tokens, cross-file diagnostics,
-//! renumbering and formatting.
+//! hover and inlay hints, renumbering and formatting.
 //!
 //! Architecture Invariant: this module knows no protocol and does no IO. Every feature is one plain
 //! function that speaks in 0-based lines, byte spans within a line ([`Span`]) and plain data; the
@@ -15,8 +15,13 @@
 //! - `outline.rs` (document symbols, folding, highlights), `semantic_tokens.rs`.
 //! - `cross_file_diagnostics.rs`: W3xx findings that need the symbol table or the workspace.
 //! - `renumber.rs`, `format.rs`: whole-document rewrites returned as text.
+//! - `hover/` (`hover_at`) and `inlay.rs` (`end_point_hints`): what a block does, over the analysis's
+//!   block reports and the parser's words (`block_words.rs`), with the run where the program's flow
+//!   decides (`program_run.rs`, `execution.rs`, `timing.rs`).
+//! - `numbers.rs`: how numbers are written for people (hover, hints, the preview's outputs).
 
 pub mod block_numbers;
+pub mod block_words;
 mod comment_sections;
 pub mod completion;
 pub mod cross_file_diagnostics;
@@ -24,10 +29,14 @@ pub mod cycles;
 pub mod documentation;
 pub mod execution;
 pub mod format;
+pub mod hover;
+pub mod inlay;
 pub mod jumps;
 pub mod language_docs;
 pub mod navigation;
+pub mod numbers;
 pub mod outline;
+pub mod program_run;
 pub mod renumber;
 pub mod semantic_tokens;
 pub mod signature_help;

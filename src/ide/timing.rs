@@ -144,9 +144,7 @@ pub fn format_duration(seconds: f64) -> String {
         return "?".to_string();
     }
     if seconds < 60.0 {
-        let text = format!("{seconds:.3}");
-        let text = text.trim_end_matches('0').trim_end_matches('.');
-        return format!("{text} s");
+        return format!("{} s", crate::ide::numbers::short(seconds));
     }
     let whole = seconds.round() as u64;
     let (hours, minutes, rest) = (whole / 3600, whole / 60 % 60, whole % 60);

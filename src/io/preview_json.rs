@@ -7,23 +7,9 @@ use crate::analysis::execution::ExecutedMove;
 use crate::analysis::simulation::time::{TimeModel, TimeTotals};
 use crate::analysis::Move;
 use crate::diagnostics::{LineDiagnostic, Span};
+use crate::ide::numbers::without_noise;
 use std::io::{self, Write};
 use std::sync::Arc;
-
-/// Rounds away floating-point noise (1e-9 mm) so that `58.0` does not print as `57.99999999999999`.
-pub fn round(value: f64) -> f64 {
-    // Beyond about 1e299 the scaling below overflows to infinity (written as `null`); such values
-    // have no digits after the point to round anyway.
-    if !(value * 1e9).is_finite() {
-        return value;
-    }
-    let rounded = (value * 1e9).round() / 1e9;
-    if rounded == 0.0 {
-        0.0
-    } else {
-        rounded
-    }
-}
 
 /// Writes the opening of the document: the file, the units and the start of the `moves` array.
 pub fn write_header(out: &mut dyn Write, file: &str, metric: bool) -> io::Result<()> {
@@ -279,7 +265,7 @@ fn write_axes(out: &mut dyn Write, values: &[(Arc<str>, f64)]) -> io::Result<()>
 /// are written from their integer thousandths, which gives the same shortest text as the general
 /// algorithm (checked below) at a fraction of its cost, the bulk of a preview's time.
 fn write_number(out: &mut dyn Write, value: f64) -> io::Result<()> {
-    let value = round(value);
+    let value = without_noise(value);
     let thousandths = value * 1000.0;
     if thousandths.abs() < 1e15 && thousandths == thousandths.trunc() {
         let count = thousandths as i64;
@@ -464,7 +450,7 @@ mod tests {
             values.push(thousandths / 7.0);
         }
         for value in values {
-            let expected = serde_json::to_string(&round(value)).unwrap();
+            let expected = serde_json::to_string(&without_noise(value)).unwrap();
             assert_eq!(fast(value), expected, "{value:e}");
         }
     }

@@ -11,6 +11,7 @@ use crate::analysis::ProgramKind;
 use crate::config::MachineConfig;
 use crate::diagnostics::LineDiagnostic;
 use crate::ide::execution::DocumentExecution;
+use crate::ide::program_run::ProgramRun;
 use crate::lsp::convert::PositionEncoding;
 use crate::lsp::cross_file::{extra_findings, ExtraDiagnostics};
 use crate::lsp::execution_job::{CachedExecution, CachedTimes, ExecutionJob};
@@ -108,6 +109,14 @@ impl Analysed {
             .map(|(_, _, times)| Arc::clone(times))
     }
 
+    /// The run and the times of this revision as the hover and the inlay hints ask for them.
+    pub fn program_run<'a>(&'a self, library: &'a dyn ProgramLibrary) -> AnalysedRun<'a> {
+        AnalysedRun {
+            analysed: self,
+            library,
+        }
+    }
+
     /// What running this revision needs, to run it after letting go of the analysis.
     pub fn execution_job(&self) -> ExecutionJob {
         ExecutionJob {
@@ -118,6 +127,26 @@ impl Analysed {
             cache: Arc::clone(&self.execution),
             times: Arc::clone(&self.times),
         }
+    }
+}
+
+/// The run of an analysed revision with the library it calls into ([`Analysed::program_run`]).
+pub struct AnalysedRun<'a> {
+    analysed: &'a Analysed,
+    library: &'a dyn ProgramLibrary,
+}
+
+impl ProgramRun for AnalysedRun<'_> {
+    fn execution(&self) -> Arc<DocumentExecution> {
+        self.analysed.execution(self.library)
+    }
+
+    fn times(&self) -> Arc<crate::ide::timing::DocumentTimes> {
+        self.analysed.times(self.library)
+    }
+
+    fn cached_times(&self) -> Option<Arc<crate::ide::timing::DocumentTimes>> {
+        self.analysed.cached_times(self.library)
     }
 }
 

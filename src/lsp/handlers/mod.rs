@@ -2,8 +2,8 @@
 //! document's analysis and converts the answer to LSP types. None of them imports another's file
 //! except for shared helpers named below, and none imports the server.
 //!
-//! - `hover.rs`, `hover_resolution.rs`, `inlay.rs`: hover and inlay hints over the block reports
-//!   (`words.rs`: where a block's words are; `numbers.rs`: how numbers are shown).
+//! - `hover.rs`, `inlay.rs`: hover and inlay hints (`ide::hover`, `ide::inlay`): positions converted,
+//!   answers wrapped.
 //! - `completion.rs`, `signature.rs`, `semantic.rs`: completion items, signature help, semantic tokens.
 //! - `navigation.rs`: definition, references, highlights, rename, workspace symbols.
 //! - `outline.rs`: document symbols and folding ranges.
@@ -16,14 +16,11 @@ pub mod completion;
 pub mod config_fixes;
 pub mod endpoint_preview;
 pub mod hover;
-pub mod hover_resolution;
 pub mod inlay;
 pub mod modal_state;
 pub mod navigation;
-pub mod numbers;
 pub mod outline;
 pub mod rewrite_commands;
 pub mod semantic;
 pub mod signature;
-pub mod words;
 pub mod workspace_edit;

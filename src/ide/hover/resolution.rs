@@ -4,7 +4,7 @@
 
 use crate::analysis::document::{ResolutionMode, StateSummary, WordResolution};
 use crate::config::{AxisKind, MachineConfig};
-use crate::lsp::handlers::numbers::{fixed, same, term};
+use crate::ide::numbers::{fixed, same, term};
 use crate::syntax::ast::Modifier;
 use std::fmt::Write;
 
@@ -16,7 +16,7 @@ fn units_label(config: &MachineConfig, kind: Option<AxisKind>) -> &'static str {
     }
 }
 
-pub(super) fn is_incremental(mode: ResolutionMode) -> bool {
+pub fn is_incremental(mode: ResolutionMode) -> bool {
     matches!(
         mode,
         ResolutionMode::Incremental
