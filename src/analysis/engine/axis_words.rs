@@ -157,6 +157,23 @@ impl<'a> Engine<'a> {
         self.state.program(index, value);
         self.written[index] = 1;
     }
+    /// The words of configured axes among `statements`, with the configuration index of each.
+    pub(super) fn configured_axis_words<'s>(
+        &'s self,
+        line: &'s str,
+        statements: &'s [Statement],
+    ) -> impl Iterator<Item = (usize, &'s AddressWord)> + 's {
+        statements
+            .iter()
+            .filter_map(move |statement| match statement {
+                Statement::Address(word) if word.kind == AddressKind::Axis => self
+                    .axes
+                    .index(self.config, line, word)
+                    .map(|index| (index, word)),
+                _ => None,
+            })
+    }
+
     /// The configuration index of an axis, by name in any case.
     pub(super) fn axis_index(&self, name: &str) -> Option<usize> {
         self.config

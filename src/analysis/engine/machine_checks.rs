@@ -7,9 +7,7 @@ use crate::analysis::engine::engine_state::Engine;
 use crate::analysis::eval::is_evaluated_function;
 use crate::config::AxisKind;
 use crate::diagnostics::{Code, Diagnostic, Span};
-use crate::syntax::ast::{
-    AddressKind, AssignTarget, Block, ExprKind, Modifier, Statement, ValueExpr,
-};
+use crate::syntax::ast::{AssignTarget, Block, ExprKind, Modifier, Statement, ValueExpr};
 use crate::syntax::keywords::is_function;
 
 /// How to configure a lathe, said by the findings about a missing transverse axis.
@@ -127,16 +125,7 @@ impl Engine<'_> {
         if !self.config.modulo_range_error {
             return;
         }
-        for statement in statements {
-            let Statement::Address(word) = statement else {
-                continue;
-            };
-            if word.kind != AddressKind::Axis {
-                continue;
-            }
-            let Some(index) = self.axes.index(self.config, line, word) else {
-                continue;
-            };
+        for (index, word) in self.configured_axis_words(line, statements) {
             if self.config.axes[index].kind != AxisKind::Modulo {
                 continue;
             }

@@ -50,16 +50,7 @@ impl<'a> Engine<'a> {
             }
         } else {
             let mut values = [Some(0.0), Some(0.0)];
-            for statement in statements {
-                let Statement::Address(word) = statement else {
-                    continue;
-                };
-                if word.kind != AddressKind::Axis {
-                    continue;
-                }
-                let Some(index) = self.axes.index(self.config, line, word) else {
-                    continue;
-                };
+            for (index, word) in self.configured_axis_words(line, statements) {
                 let slot = if Some(index) == first {
                     0
                 } else if Some(index) == second {

@@ -87,23 +87,15 @@ fn escape_property(text: &str) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::cli::report::ProgramLines;
+    use crate::cli::formats::output::render_one_file;
     use crate::diagnostics::{Code, Diagnostic, Fix, Span};
 
+    /// The file's commands, without the summary line the end adds.
     fn render(path: &str, text: &str, diagnostics: &[LineDiagnostic]) -> String {
-        let lines = ProgramLines::new(text);
-        let mut out = Vec::new();
-        GithubOutput
-            .file(
-                &mut out,
-                &FileFindings {
-                    path_text: path,
-                    lines: &lines,
-                    diagnostics,
-                },
-            )
-            .unwrap();
-        String::from_utf8(out).unwrap()
+        let out = render_one_file(&mut GithubOutput, path, text, diagnostics, true);
+        let out = String::from_utf8(out).unwrap();
+        let summary_start = out.trim_end().rfind('\n').map_or(0, |at| at + 1);
+        out[..summary_start].to_string()
     }
 
     fn finding(code: Code, severity: Severity, start: usize, end: usize) -> LineDiagnostic {

@@ -101,31 +101,12 @@ fn fingerprint(parts: &[&[u8]]) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::cli::report::ProgramLines;
+    use crate::cli::formats::output::render_one_file;
     use crate::diagnostics::{Code, Diagnostic, LineDiagnostic, Span};
     use serde_json::Value;
 
     fn render(path: &str, text: &str, diagnostics: &[LineDiagnostic]) -> Vec<Value> {
-        let lines = ProgramLines::new(text);
-        let mut output = GitlabOutput::default();
-        let mut out = Vec::new();
-        output.begin(&mut out).unwrap();
-        output
-            .file(
-                &mut out,
-                &FileFindings {
-                    path_text: path,
-                    lines: &lines,
-                    diagnostics,
-                },
-            )
-            .unwrap();
-        let summary = RunSummary {
-            n_checked_files: 1,
-            counts: Default::default(),
-            complete: true,
-        };
-        output.end(&mut out, &summary).unwrap();
+        let out = render_one_file(&mut GitlabOutput::default(), path, text, diagnostics, true);
         serde_json::from_slice(&out).unwrap()
     }
 

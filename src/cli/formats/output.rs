@@ -45,6 +45,38 @@ impl FileFindings<'_> {
     }
 }
 
+/// The whole output of `output` for one file of `text` with `diagnostics` (for the formats' tests):
+/// begin, the file, and the end with the findings counted; `complete` as the run would say.
+#[cfg(test)]
+pub(crate) fn render_one_file(
+    output: &mut dyn CheckOutput,
+    path: &str,
+    text: &str,
+    diagnostics: &[LineDiagnostic],
+    complete: bool,
+) -> Vec<u8> {
+    let lines = ProgramLines::new(text);
+    let mut out = Vec::new();
+    let mut counts = SeverityCounts::default();
+    for item in diagnostics {
+        counts.add(item.diagnostic.severity);
+    }
+    let file = FileFindings {
+        path_text: path,
+        lines: &lines,
+        diagnostics,
+    };
+    let summary = RunSummary {
+        n_checked_files: 1,
+        counts,
+        complete,
+    };
+    output.begin(&mut out).expect("writing to memory");
+    output.file(&mut out, &file).expect("writing to memory");
+    output.end(&mut out, &summary).expect("writing to memory");
+    out
+}
+
 /// The alarm numbers of the control that a finding's summary names (`(alarm 12060)`,
 /// `(alarms 12010, 16420)`), in the order written: the same numbers the control shows, so that a
 /// reader of a CI report can look them up in the control's alarm list.

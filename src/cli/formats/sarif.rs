@@ -207,37 +207,12 @@ fn result(location: &Value, lines: &ProgramLines<'_>, line_diagnostic: &LineDiag
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::cli::formats::output::render_one_file;
     use crate::diagnostics::{Diagnostic, Fix};
 
     fn render(path: &str, text: &str, diagnostics: &[LineDiagnostic], complete: bool) -> Value {
-        let lines = ProgramLines::new(text);
         let mut output = SarifOutput::new(Some(Path::new("/work/repo")));
-        let mut out = Vec::new();
-        output.begin(&mut out).unwrap();
-        output
-            .file(
-                &mut out,
-                &FileFindings {
-                    path_text: path,
-                    lines: &lines,
-                    diagnostics,
-                },
-            )
-            .unwrap();
-        let mut counts = crate::cli::report::SeverityCounts::default();
-        for item in diagnostics {
-            counts.add(item.diagnostic.severity);
-        }
-        output
-            .end(
-                &mut out,
-                &RunSummary {
-                    n_checked_files: 1,
-                    counts,
-                    complete,
-                },
-            )
-            .unwrap();
+        let out = render_one_file(&mut output, path, text, diagnostics, complete);
         serde_json::from_slice(&out).expect("the log is one JSON document")
     }
 
