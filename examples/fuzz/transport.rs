@@ -136,8 +136,15 @@ fn open_body(random: &mut Random, program_literal: &str) -> String {
     } else {
         literal
     };
+    // Another "text" key before the document's, and space around the colon.
+    let before = match random.below(10) {
+        0 => r#""x":{"text":"b"},"#,
+        1 => r#""x":"\"text\":\"","#,
+        _ => "",
+    };
+    let colon = if random.one_in(6) { " : " } else { ":" };
     format!(
-        r#"{{{jsonrpc}{id}{method},"params":{{"textDocument":{{"uri":{uri},"languageId":"sinumerik","version":{version},"text":{text}{extra}}}}}}}"#
+        r#"{{{jsonrpc}{id}{method},"params":{{{before}"textDocument":{{"uri":{uri},"languageId":"sinumerik","version":{version},"text"{colon}{text}{extra}}}}}}}"#
     )
 }
 
