@@ -19,7 +19,7 @@ use crate::lsp::locks::lock;
 use crate::lsp::log::HandlerTimer;
 use crate::lsp::settings::Settings;
 use crate::lsp::state::{not_open, ClientInfo, Shared};
-use crate::lsp::text_document::{rope_from_text, ChangeError};
+use crate::lsp::text_document::ChangeError;
 use crate::lsp::transport::outbox::OutgoingSender;
 use crate::lsp::uris::{file_path, program_kind};
 use crate::lsp::workspace::index::Workspace;
@@ -133,7 +133,7 @@ impl LanguageServer for Backend {
         let _timer = HandlerTimer::new("textDocument/didOpen", &self.outgoing);
         let mut item = params.text_document;
         // The string goes as soon as the rope holds the text: a large program is not kept twice.
-        let text = rope_from_text(&std::mem::take(&mut item.text));
+        let text = ropey::Rope::from_str(&std::mem::take(&mut item.text));
         let path = file_path(&item.uri);
         let kind = program_kind(&item.uri, path.as_deref());
         let config = self.machine_config(path.as_deref());

@@ -3,7 +3,6 @@
 
 use crate::analysis::document::LineSource;
 use crate::lsp::convert::{position_to_char, PositionEncoding};
-use crate::lsp::transport::measure::measured_without;
 use ropey::Rope;
 use std::borrow::Cow;
 use std::cell::RefCell;
@@ -161,35 +160,6 @@ fn replace(rope: &mut Rope, start: usize, end: usize, text: &str) -> RopeLineCha
         removed: old_last - first + 1,
         inserted: new_last - first + 1,
     }
-}
-
-/// Texts from this size on are made into a rope in two halves at once.
-const PARALLEL_ROPE_BYTES: usize = 4 << 20;
-
-/// The rope of an opened document's text. A large text is built in two halves on two threads, joined
-/// after a line feed (so that no CRLF is split): a 33 MB program takes 17-30 ms on one thread, and the
-/// user waits for it before the first analysis starts.
-pub fn rope_from_text(text: &str) -> Rope {
-    if text.len() < PARALLEL_ROPE_BYTES || measured_without("parallel-rope") {
-        return Rope::from_str(text);
-    }
-    let Some(split) = memchr::memchr(b'\n', &text.as_bytes()[text.len() / 2..])
-        .map(|offset| text.len() / 2 + offset + 1)
-    else {
-        return Rope::from_str(text);
-    };
-    let (first, second) = text.split_at(split);
-    let (mut rope, rest) = std::thread::scope(|scope| {
-        let rest = scope.spawn(|| Rope::from_str(second));
-        let rope = Rope::from_str(first);
-        (rope, rest.join())
-    });
-    match rest {
-        Ok(rest) => rope.append(rest),
-        // The thread cannot fail short of running out of memory; the text is then read on this one.
-        Err(_) => return Rope::from_str(text),
-    }
-    rope
 }
 
 /// The core's line count of a rope: ropey counts an empty line after a final line terminator (and
@@ -486,15 +456,5 @@ mod tests {
                 inserted: 1
             }
         );
-    }
-
-    #[test]
-    fn a_large_text_becomes_the_same_rope_in_two_halves() {
-        let line = "N10 G1 X1.5 Y-2 ; ä\r\n";
-        let text = line.repeat(PARALLEL_ROPE_BYTES / line.len() + 7) + "N20 M30";
-        let rope = rope_from_text(&text);
-        assert_eq!(rope.len_bytes(), text.len());
-        assert_eq!(rope.len_lines(), Rope::from_str(&text).len_lines());
-        assert!(rope == text.as_str());
     }
 }
