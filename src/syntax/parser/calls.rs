@@ -9,13 +9,23 @@ use crate::syntax::parser::cursor::Parser;
 use crate::syntax::parser::definitions::is_type_name;
 
 impl Parser<'_> {
+    /// The name (an identifier or a single letter) at the current position, taken.
+    fn name_here(&mut self) -> Option<Span> {
+        (self.is_at(Token::Identifier) || self.is_at(Token::Letter)).then(|| self.advance())
+    }
+
+    /// Like [`Self::name_here`]; without a name, `message` is reported at the keyword.
+    pub(super) fn name_or_report(&mut self, keyword_span: Span, message: &str) -> Option<Span> {
+        let name = self.name_here();
+        if name.is_none() {
+            self.report(Code::ExpectedExpression, keyword_span, message);
+        }
+        name
+    }
+
     /// `EXTERN name(types)`: the declared name; the rest only has to balance.
     pub(super) fn parse_extern(&mut self, keyword_span: Span) {
-        let name = if self.is_at(Token::Identifier) || self.is_at(Token::Letter) {
-            Some(self.advance())
-        } else {
-            None
-        };
+        let name = self.name_here();
         self.skip_balanced_rest();
         let span = self.span_since(keyword_span);
         self.block
@@ -114,16 +124,7 @@ impl Parser<'_> {
     }
 
     pub(super) fn parse_procedure_header(&mut self, keyword_span: Span) {
-        let name = if self.is_at(Token::Identifier) || self.is_at(Token::Letter) {
-            Some(self.advance())
-        } else {
-            self.report(
-                Code::ExpectedExpression,
-                keyword_span,
-                "PROC needs the name of the subprogram",
-            );
-            None
-        };
+        let name = self.name_or_report(keyword_span, "PROC needs the name of the subprogram");
         let mut parameters = Vec::new();
         let list_start = self.position;
         if self.is_at(Token::LeftParen) {

@@ -20,21 +20,11 @@ impl Parser<'_> {
                     // Several `IF ... GOTO` may follow in one block.
                     return;
                 }
-                let span = self.span_since(keyword_span);
-                self.block.statements.push(Statement::Structure {
-                    keyword,
-                    condition,
-                    span,
-                });
+                self.push_structure(keyword, condition, self.span_since(keyword_span));
             }
             StructureKeyword::While | StructureKeyword::Until => {
                 let condition = self.parse_condition(keyword_span);
-                let span = self.span_since(keyword_span);
-                self.block.statements.push(Statement::Structure {
-                    keyword,
-                    condition,
-                    span,
-                });
+                self.push_structure(keyword, condition, self.span_since(keyword_span));
             }
             StructureKeyword::For => {
                 // `FOR CNT=1 TO 3`: the start is an assignment, the end value is the condition. Only an
@@ -64,21 +54,11 @@ impl Parser<'_> {
                         "FOR needs a counter, a start value and `TO` with the end value: `FOR CNT=1 TO 10`",
                     );
                 }
-                let span = self.span_since(keyword_span);
-                self.block.statements.push(Statement::Structure {
-                    keyword,
-                    condition,
-                    span,
-                });
+                self.push_structure(keyword, condition, self.span_since(keyword_span));
             }
             StructureKeyword::Case => {
                 let condition = self.parse_condition(keyword_span);
-                let span = self.span_since(keyword_span);
-                self.block.statements.push(Statement::Structure {
-                    keyword,
-                    condition,
-                    span,
-                });
+                self.push_structure(keyword, condition, self.span_since(keyword_span));
                 if self.is_at(Token::Identifier) && self.upper_name(self.current_span()) == "OF" {
                     self.advance();
                 }
@@ -121,20 +101,20 @@ impl Parser<'_> {
                     self.parse_section_repeat(keyword_span);
                     return;
                 }
-                self.block.statements.push(Statement::Structure {
-                    keyword,
-                    condition: None,
-                    span: keyword_span,
-                });
+                self.push_structure(keyword, None, keyword_span);
             }
             _ => {
-                self.block.statements.push(Statement::Structure {
-                    keyword,
-                    condition: None,
-                    span: keyword_span,
-                });
+                self.push_structure(keyword, None, keyword_span);
             }
         }
+    }
+
+    fn push_structure(&mut self, keyword: StructureKeyword, condition: Option<ExprId>, span: Span) {
+        self.block.statements.push(Statement::Structure {
+            keyword,
+            condition,
+            span,
+        });
     }
 
     /// Whether the name at the current position is a statement keyword or G function name.

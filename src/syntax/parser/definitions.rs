@@ -153,16 +153,7 @@ impl Parser<'_> {
     }
 
     pub(super) fn parse_macro_definition(&mut self, keyword_span: Span) {
-        let name = if self.is_at(Token::Identifier) || self.is_at(Token::Letter) {
-            Some(self.advance())
-        } else {
-            self.report(
-                Code::ExpectedExpression,
-                keyword_span,
-                "DEFINE needs a name: `DEFINE NAME AS ...`",
-            );
-            None
-        };
+        let name = self.name_or_report(keyword_span, "DEFINE needs a name: `DEFINE NAME AS ...`");
         if self.is_at(Token::Identifier) && self.upper_name(self.current_span()) == "AS" {
             self.advance();
         } else if name.is_some() {
