@@ -61,25 +61,6 @@ fn lines_tell_flow_as_the_interpreter_does_in_the_cases_that_could_differ() {
     }
 }
 
-fn fixture_programs(dir: &Path, out: &mut Vec<PathBuf>) {
-    let Ok(entries) = std::fs::read_dir(dir) else {
-        return;
-    };
-    let mut entries: Vec<PathBuf> = entries
-        .filter_map(|entry| entry.ok().map(|e| e.path()))
-        .collect();
-    entries.sort();
-    for path in entries {
-        if path.is_dir() {
-            fixture_programs(&path, out);
-        } else if path.extension().is_some_and(|extension| {
-            extension.eq_ignore_ascii_case("mpf") || extension.eq_ignore_ascii_case("spf")
-        }) {
-            out.push(path);
-        }
-    }
-}
-
 fn compare_all(paths: &[PathBuf]) -> (usize, usize) {
     let config = MachineConfig::default();
     let mut with_flow = 0;
@@ -104,7 +85,7 @@ fn compare_all(paths: &[PathBuf]) -> (usize, usize) {
 #[test]
 fn lines_tell_flow_as_the_interpreter_does_in_every_fixture() {
     let mut paths = Vec::new();
-    fixture_programs(
+    program_files(
         &Path::new(env!("CARGO_MANIFEST_DIR")).join("fixtures"),
         &mut paths,
     );
