@@ -559,6 +559,16 @@ fn source_files(root: &Path) -> BTreeMap<String, String> {
     files
 }
 
+/// The edges as sorted (from, to) pairs, for comparing with an expected list.
+fn sorted_pairs(edges: &[Edge]) -> Vec<(&str, &str)> {
+    let mut pairs: Vec<(&str, &str)> = edges
+        .iter()
+        .map(|e| (e.from.as_str(), e.to.as_str()))
+        .collect();
+    pairs.sort();
+    pairs
+}
+
 #[test]
 fn no_import_cycle_between_files_of_src() {
     let files = source_files(&Path::new(env!("CARGO_MANIFEST_DIR")).join("src"));
@@ -621,11 +631,7 @@ fn declarations_tests_modules_comments_and_strings_make_no_edge() {
         ),
     ]);
     let edges = import_graph(&files);
-    let mut pairs: Vec<(&str, &str)> = edges
-        .iter()
-        .map(|e| (e.from.as_str(), e.to.as_str()))
-        .collect();
-    pairs.sort();
+    let pairs = sorted_pairs(&edges);
     assert_eq!(
         pairs,
         vec![("a/inner.rs", "a/mod.rs"), ("a/inner.rs", "b.rs")]
@@ -649,11 +655,7 @@ fn code_paths_groups_and_path_attributes_are_followed() {
         ("b/deep.rs", "pub fn g() {}"),
     ]);
     let edges = import_graph(&files);
-    let mut pairs: Vec<(&str, &str)> = edges
-        .iter()
-        .map(|e| (e.from.as_str(), e.to.as_str()))
-        .collect();
-    pairs.sort();
+    let pairs = sorted_pairs(&edges);
     assert_eq!(
         pairs,
         vec![
