@@ -17,6 +17,7 @@
 //! server is measured on fewer samples, and the count is printed) change the run. `BENCH_STYLES`
 //! (default `cam3d,inc,noisy`) and `BENCH_SETUPS` (default 3: all setups; 1: the first only, 2: the
 //! first two) narrow it. `BENCH_PROGRAM_DIR` keeps the generated programs there and reuses them.
+//! `BENCH_SHOW_SLOW` prints every edit that took over 12 ms, with when it was sent.
 //!
 //! Side by side: `BENCH_VARIANTS` lists servers separated by `;`, each `name`, optionally
 //! `@/path/to/binary` (default: this build's binary) and `:KEY=VALUE` environment settings (for
@@ -356,11 +357,18 @@ fn summary(name: &str, samples: &mut [Duration]) {
     }
     let median = percentile(samples, 0.5);
     let p99 = percentile(samples, 0.99);
+    let slowest: Vec<String> = samples
+        .iter()
+        .rev()
+        .take(3)
+        .map(|s| milliseconds(*s))
+        .collect();
     println!(
-        "  {name}: median {}, p99 {} ({} samples)",
+        "  {name}: median {}, p99 {} ({} samples; slowest {})",
         milliseconds(median),
         milliseconds(p99),
-        samples.len()
+        samples.len(),
+        slowest.join(", ")
     );
 }
 
@@ -544,6 +552,7 @@ fn run(style: &str, line_count: usize, setup: &Setup, variant: &Variant) -> Opti
     let mut edits = Vec::new();
     let mut edit_first_bytes = Vec::new();
     let edit_started = Instant::now();
+    let show_slow = std::env::var_os("BENCH_SHOW_SLOW").is_some();
     while edits.len() < env_number("BENCH_EDITS", 200) && edit_started.elapsed() < budget {
         let line_idx = random.below(lines.len());
         let Some((start, end, new_text)) = edit_for(style, &lines[line_idx]) else {
@@ -557,6 +566,16 @@ fn run(style: &str, line_count: usize, setup: &Setup, variant: &Variant) -> Opti
         let sent = server.send(&encoded);
         let arrival = server.diagnostics_of(version);
         edits.push(arrival.at - sent);
+        // `BENCH_SHOW_SLOW` prints each edit over 12 ms, to see whether slow ones come in runs.
+        if show_slow && (arrival.at - sent) > Duration::from_millis(12) {
+            println!(
+                "    slow edit #{} at +{:.3} s: {} (first byte {})",
+                edits.len(),
+                (sent - edit_started).as_secs_f64(),
+                milliseconds(arrival.at - sent),
+                milliseconds(arrival.first_byte_at - sent)
+            );
+        }
         edit_first_bytes.push(arrival.first_byte_at - sent);
         lines[line_idx].replace_range(start..end, &new_text);
     }

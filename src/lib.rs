@@ -6,7 +6,7 @@
 //! side by side `cli` (the command line) and `lsp` (the language server), which `main.rs` chooses
 //! between. See ARCHITECTURE.md.
 
-// `unsafe` lives in one module, `lsp/transport/sys.rs`, which alone is allowed it.
+// `unsafe` lives in one module, `lsp/transport/sys/`, which alone is allowed it.
 #![deny(unsafe_code)]
 
 pub mod analysis;

@@ -18,6 +18,7 @@ pub mod wire;
 use crate::diagnostics::LineDiagnostic;
 use crate::lsp::convert::{span_to_range, PositionEncoding};
 use crate::lsp::transport::outbox::Part;
+use crate::lsp::transport::FrozenBytes;
 use std::borrow::Cow;
 use std::sync::Arc;
 use tower_lsp_server::ls_types::{Position, Range, Uri};
@@ -62,10 +63,11 @@ pub fn ranges<'a>(
 /// Objects per chunk of the encoded array: an edit encodes the chunks it touches again.
 const CHUNK_ITEMS: usize = 256;
 
-/// Encoded objects, each followed by a comma; shared with the messages being written.
+/// Encoded objects, each followed by a comma; shared with the messages being written, in frozen pages
+/// the writer may hand to the pipe.
 #[derive(Clone)]
 struct Chunk {
-    bytes: Arc<Vec<u8>>,
+    bytes: Arc<FrozenBytes>,
     items: usize,
 }
 
@@ -84,7 +86,7 @@ impl Publisher {
     pub fn encode(&mut self, diagnostics: &[LineDiagnostic], ranges: Vec<Range>) -> Vec<u8> {
         let mut items = Vec::new();
         for (bytes, length) in self.encode_shared(diagnostics, ranges) {
-            items.extend_from_slice(&bytes[..length]);
+            items.extend_from_slice(&bytes.as_slice()[..length]);
         }
         items
     }
@@ -96,7 +98,7 @@ impl Publisher {
         &mut self,
         diagnostics: &[LineDiagnostic],
         ranges: Vec<Range>,
-    ) -> Vec<(Arc<Vec<u8>>, usize)> {
+    ) -> Vec<(Arc<FrozenBytes>, usize)> {
         let same = |old: usize, new: usize| {
             self.ranges[old] == ranges[new] && self.items[old] == diagnostics[new]
         };
@@ -139,7 +141,7 @@ impl Publisher {
                 bytes.push(b',');
             }
             chunks.push(Chunk {
-                bytes: Arc::new(bytes),
+                bytes: Arc::new(FrozenBytes::new(bytes)),
                 items: items.len(),
             });
         }
@@ -160,7 +162,7 @@ impl Publisher {
             .enumerate()
             .map(|(index, chunk)| {
                 // The comma after the last object goes.
-                let length = chunk.bytes.len() - usize::from(index + 1 == count);
+                let length = chunk.bytes.as_slice().len() - usize::from(index + 1 == count);
                 (Arc::clone(&chunk.bytes), length)
             })
             .collect()
@@ -193,7 +195,7 @@ pub fn publication(
 pub fn publication_parts(
     uri: &Uri,
     version: Option<i32>,
-    items: Vec<(Arc<Vec<u8>>, usize)>,
+    items: Vec<(Arc<FrozenBytes>, usize)>,
     more: &[WireDiagnostic<'_>],
 ) -> Vec<Part> {
     let any_items = items.iter().any(|(_, length)| *length > 0);

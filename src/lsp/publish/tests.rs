@@ -180,7 +180,7 @@ fn chunks_around_a_change_are_written_again_and_the_rest_taken_over() {
         assert_eq!(
             shared
                 .iter()
-                .flat_map(|(bytes, length)| bytes[..*length].iter().copied())
+                .flat_map(|(bytes, length)| bytes.as_slice()[..*length].iter().copied())
                 .collect::<Vec<u8>>(),
             fresh.encode(&items, ranges_of(&items)),
             "step {step}"

@@ -8,7 +8,8 @@
 //! - `outbox.rs`: the queue every outgoing message goes through, and the task that writes it.
 //! - `framing_reader.rs`: input -> framer -> message; `stderr.rs`: the lines the transport logs;
 //!   `measure.rs`: the switch of the side-by-side measurements.
-//! - `sys.rs`: the process's stdio and allocator settings, the crate's only `unsafe` code.
+//! - `sys/`: the crate's only `unsafe` code: the allocator and pipe settings, frozen pages and the
+//!   stdout writer that hands them to a pipe.
 //!
 //! The framework's own `Server` is not used: its reader stops for good at the first body it cannot
 //! read (which ends the server on one bad message), and its writer serializes every notification
@@ -21,10 +22,12 @@ pub mod measure;
 pub mod message;
 pub mod open_in_place;
 pub mod outbox;
-// The crate's only `unsafe` code: the process settings made through the C library.
 pub mod stderr;
+// The crate's only `unsafe` code: what the server does through the C library.
 #[allow(unsafe_code)]
 mod sys;
+
+pub use sys::FrozenBytes;
 
 use futures::{SinkExt, StreamExt};
 use message::{Incoming, InitializeGate};
@@ -156,7 +159,7 @@ where
     sys::enlarge_stdio_buffers();
     runtime.block_on(serve_on(
         tokio::io::stdin(),
-        outbox::Output::<tokio::io::Stdout>::Blocking(Box::new(std::io::stdout())),
+        outbox::Output::<tokio::io::Stdout>::Stdout,
         build,
     ));
     // Analyses still running in the blocking pool are not waited for: the client has gone.

@@ -6,11 +6,13 @@
 //! document's `Publisher`, which takes them over for the next publication, so megabytes of items are
 //! neither copied into a message nor written into fresh pages on every keystroke. On the process's
 //! stdout the writer is a thread of its own with blocking writes (tokio's stdout copies every write
-//! into its own buffer and hands it to the blocking pool, 2 MiB at a time); in-process (tests) it is a
-//! task.
+//! into its own buffer and hands it to the blocking pool, 2 MiB at a time), and the shared items, in
+//! frozen pages of their own, are handed to a pipe rather than copied (`sys/stdout.rs`); in-process
+//! (tests) it is a task.
 
 use crate::lsp::transport::framing;
 use crate::lsp::transport::stderr;
+use crate::lsp::transport::sys::{FrozenBytes, OutputPiece, StdoutOutput};
 use serde::Serialize;
 use std::sync::Arc;
 use std::time::Duration;
@@ -36,15 +38,22 @@ pub enum Outgoing {
 /// A piece of a message's body.
 pub enum Part {
     Owned(Vec<u8>),
-    /// The first `length` bytes of a buffer shared with the sender.
-    Shared(Arc<Vec<u8>>, usize),
+    /// The first `length` bytes of frozen bytes shared with the sender.
+    Shared(Arc<FrozenBytes>, usize),
 }
 
 impl Part {
     fn bytes(&self) -> &[u8] {
         match self {
             Part::Owned(bytes) => bytes,
-            Part::Shared(bytes, length) => &bytes[..*length],
+            Part::Shared(bytes, length) => &bytes.as_slice()[..*length],
+        }
+    }
+
+    fn piece(&self) -> OutputPiece<'_> {
+        match self {
+            Part::Owned(bytes) => OutputPiece::copied(bytes),
+            Part::Shared(bytes, length) => OutputPiece::frozen(bytes, *length),
         }
     }
 }
@@ -145,8 +154,8 @@ impl OutgoingSender {
 pub enum Output<O> {
     /// A stream written by a task of the runtime (in-process use, the tests).
     Stream(O),
-    /// A blocking writer with a thread of its own (the process's stdout).
-    Blocking(Box<dyn std::io::Write + Send>),
+    /// The process's stdout, written with blocking calls by a thread of its own.
+    Stdout,
 }
 
 /// The writer; [`Writer::finish`] waits until everything queued is out.
@@ -176,11 +185,11 @@ where
                 let _ = done_sender.send(());
             });
         }
-        Output::Blocking(output) => {
+        Output::Stdout => {
             let spawned = std::thread::Builder::new()
                 .name("lsp-output".into())
                 .spawn(move || {
-                    write_blocking(output, receiver);
+                    write_blocking(StdoutOutput::new(), receiver);
                     let _ = done_sender.send(());
                 });
             if let Err(error) = spawned {
@@ -226,23 +235,15 @@ async fn write_stream<O: AsyncWrite + Unpin>(
     let _ = output.flush().await;
 }
 
-fn write_blocking(
-    mut output: Box<dyn std::io::Write + Send>,
-    mut receiver: mpsc::UnboundedReceiver<Queued>,
-) {
+fn write_blocking(mut output: StdoutOutput, mut receiver: mpsc::UnboundedReceiver<Queued>) {
     while let Some(Queued::Body(parts)) = receiver.blocking_recv() {
         let started = std::time::Instant::now();
         let length = body_length(&parts);
-        let written = (|| {
-            output.write_all(&framing::header(length))?;
-            for part in &parts {
-                output.write_all(part.bytes())?;
-            }
-            if receiver.is_empty() {
-                output.flush()?;
-            }
-            std::io::Result::Ok(())
-        })();
+        let header = framing::header(length);
+        let pieces: Vec<OutputPiece<'_>> = std::iter::once(OutputPiece::copied(&header))
+            .chain(parts.iter().map(Part::piece))
+            .collect();
+        let written = output.write_message(&pieces);
         stderr::slow_with(
             || format!("writing a message of {length} bytes"),
             started.elapsed(),
@@ -251,5 +252,4 @@ fn write_blocking(
             return;
         }
     }
-    let _ = output.flush();
 }

@@ -1,9 +1,6 @@
 //! The process settings the server makes through the C library: the allocator's options and the
-//! size of the stdio pipes' buffers. This is the crate's only `unsafe` code; each piece stays because
-//! it measurably helps one of the server's goal figures (`docs/performance.md`, "Transport machinery,
-//! side by side"). `SINUMERIK_LSP_MEASURE_WITHOUT` (a comma-separated list of `allocator` and
-//! `pipe-buffers`) turns pieces off, for that measurement only. The crate denies `unsafe_code`;
-//! `transport/mod.rs` allows it for this module alone.
+//! size of the stdio pipes' buffers. `SINUMERIK_LSP_MEASURE_WITHOUT` (`allocator`, `pipe-buffers`)
+//! turns them off, for the side-by-side measurement only.
 
 use crate::lsp::transport::measure::measured_without;
 
