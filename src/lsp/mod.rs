@@ -27,6 +27,7 @@ mod ext;
 mod handlers;
 mod locks;
 mod log;
+mod opened_text;
 mod publish;
 mod server;
 mod settings;

@@ -132,8 +132,8 @@ impl LanguageServer for Backend {
     async fn did_open(&self, params: DidOpenTextDocumentParams) {
         let _timer = HandlerTimer::new("textDocument/didOpen", &self.outgoing);
         let mut item = params.text_document;
-        // The string goes as soon as the rope holds the text: a large program is not kept twice.
-        let text = ropey::Rope::from_str(&std::mem::take(&mut item.text));
+        // The first analysis reads the string; the rope is built from it afterwards (`opened_text.rs`).
+        let text = std::mem::take(&mut item.text);
         let path = file_path(&item.uri);
         let kind = program_kind(&item.uri, path.as_deref());
         let config = self.machine_config(path.as_deref());

@@ -92,7 +92,7 @@ pub fn document_changed(shared: &Arc<Shared>, uri: &Uri) {
         let line_count = shared
             .documents
             .get(&uri)
-            .map_or(0, |document| document.text_snapshot().rope.len_lines());
+            .map_or(0, |document| document.line_count());
         let quiet = quiet_time(line_count);
         loop {
             let wait_until = {

@@ -16,6 +16,7 @@ use crate::lsp::convert::PositionEncoding;
 use crate::lsp::cross_file::{extra_findings, ExtraDiagnostics};
 use crate::lsp::execution_job::{CachedExecution, CachedTimes, ExecutionJob};
 use crate::lsp::log;
+use crate::lsp::opened_text::{rope_from_string, FlatLines};
 use crate::lsp::publish::limit::{note, note_diagnostic, within_limit};
 use crate::lsp::publish::wire::WireDiagnostic;
 use crate::lsp::publish::{self, Publisher};
@@ -32,6 +33,8 @@ use tower_lsp_server::ls_types::{TextDocumentContentChangeEvent, Uri};
 /// Kept under this name for the files that take it from here.
 pub use crate::lsp::locks::lock;
 
+mod first_analysis;
+
 /// What changed since the analysis last looked at the text.
 #[derive(Debug, Clone, Copy)]
 enum Pending {
@@ -42,13 +45,40 @@ enum Pending {
 }
 
 struct TextState {
+    /// The text; its rope is empty while `opened` holds the text instead.
     text: DocumentText,
+    /// The text of the `didOpen` until its rope is built (`opened_text.rs`): by the worker after the
+    /// first diagnostics, or by whatever needs the rope before.
+    opened: Option<Arc<String>>,
     /// Counts every change of text or configuration; results of an older revision are stale.
     revision: u64,
     pending: Pending,
     config: Arc<MachineConfig>,
     worker_running: bool,
     closed: bool,
+}
+
+impl TextState {
+    /// The text with its rope, which is built now if it was not yet.
+    fn with_rope(&mut self) -> &mut DocumentText {
+        if let Some(opened) = self.opened.take() {
+            self.text.rope = match Arc::try_unwrap(opened) {
+                Ok(string) => rope_from_string(string),
+                // The first analysis still reads the string: the rope is a copy of it.
+                Err(shared) => Rope::from_str(&shared),
+            };
+        }
+        &mut self.text
+    }
+}
+
+/// What a publication is made of: an analysis, the lines it read, and their version.
+struct PublishedText<'a> {
+    analysis: &'a DocumentAnalysis,
+    lines: &'a dyn LineSource,
+    /// Whether the text is ASCII, where byte offsets are the columns in every position encoding.
+    all_ascii: bool,
+    version: i32,
 }
 
 /// An analysis together with the exact text it describes.
@@ -181,11 +211,12 @@ pub struct WorkerContext {
 }
 
 impl OpenDocument {
+    /// A document opened with `text`, which its first analysis reads before the rope is built.
     pub fn new(
         uri: Uri,
         path: Option<PathBuf>,
         kind: ProgramKind,
-        text: Rope,
+        text: String,
         version: i32,
         config: Arc<MachineConfig>,
     ) -> OpenDocument {
@@ -194,7 +225,8 @@ impl OpenDocument {
             path,
             kind,
             text: Mutex::new(TextState {
-                text: DocumentText::from_rope(text, version),
+                text: DocumentText::from_rope(Rope::new(), version),
+                opened: Some(Arc::new(text)),
                 revision: 1,
                 pending: Pending::Everything,
                 config,
@@ -212,14 +244,18 @@ impl OpenDocument {
     /// it still holds (`publish/mod.rs`).
     fn publication(
         &self,
-        analysed: &Analysed,
+        published: PublishedText<'_>,
         encoding: PositionEncoding,
         limit: Option<usize>,
         extra: &[LineDiagnostic],
     ) -> Vec<Part> {
-        let (diagnostics, left_out) = within_limit(analysed.analysis.diagnostics(), limit);
-        let all_ascii = analysed.rope.len_bytes() == analysed.rope.len_chars();
-        let lines = analysed.lines();
+        let PublishedText {
+            analysis,
+            lines,
+            all_ascii,
+            version,
+        } = published;
+        let (diagnostics, left_out) = within_limit(analysis.diagnostics(), limit);
         let ranges = publish::ranges(&diagnostics, |line| lines.line(line), all_ascii, encoding);
         let extra_ranges = publish::ranges(extra, |line| lines.line(line), all_ascii, encoding);
         let note_text = limit
@@ -244,7 +280,7 @@ impl OpenDocument {
             return Vec::new();
         };
         let items = publisher.encode_shared(&diagnostics, ranges);
-        publish::publication_parts(&self.uri, Some(analysed.version), items, &more)
+        publish::publication_parts(&self.uri, Some(version), items, &more)
     }
 
     /// The current revision; a request remembers it to know whether its answer is still current.
@@ -254,9 +290,10 @@ impl OpenDocument {
 
     /// The rope (a cheap copy), version, revision and configuration as they are now.
     pub fn text_snapshot(&self) -> TextSnapshot {
-        let text = lock(&self.text);
+        let mut text = lock(&self.text);
+        let rope = text.with_rope().rope.clone();
         TextSnapshot {
-            rope: text.text.rope.clone(),
+            rope,
             version: text.text.version,
             revision: text.revision,
             config: Arc::clone(&text.config),
@@ -273,7 +310,22 @@ impl OpenDocument {
     /// The version and the whole text as they are now.
     pub fn text_now(&self) -> (i32, String) {
         let text = lock(&self.text);
-        (text.text.version, text.text.rope.to_string())
+        match &text.opened {
+            Some(opened) => (text.text.version, String::clone(opened)),
+            None => (text.text.version, text.text.rope.to_string()),
+        }
+    }
+
+    /// The number of lines as the core counts them, without building the rope.
+    pub fn line_count(&self) -> usize {
+        let opened = {
+            let text = lock(&self.text);
+            match &text.opened {
+                Some(opened) => Arc::clone(opened),
+                None => return text.text.line_count(),
+            }
+        };
+        FlatLines::new(&opened).line_count()
     }
 
     /// Applies a `didChange` synchronously and starts the analysis. Called before any `.await` of
@@ -285,7 +337,7 @@ impl OpenDocument {
         context: &WorkerContext,
     ) -> Result<(), ChangeError> {
         let mut text = lock(&self.text);
-        let changed = apply_changes(&mut text.text, changes, version, context.encoding)?;
+        let changed = apply_changes(text.with_rope(), changes, version, context.encoding)?;
         if let Some(line_change) = changed {
             text.pending = match text.pending {
                 Pending::Nothing => Pending::Lines(line_change),
@@ -357,7 +409,7 @@ impl OpenDocument {
                 }
                 let pending = std::mem::replace(&mut text.pending, Pending::Nothing);
                 (
-                    text.text.rope.clone(),
+                    text.with_rope().rope.clone(),
                     text.text.version,
                     text.revision,
                     pending,
@@ -432,16 +484,30 @@ impl OpenDocument {
 
     /// Analyses until the analysis matches the newest revision, then publishes its diagnostics.
     fn run_worker(&self, context: &WorkerContext) {
+        let opened = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
+            self.publish_opened_text(context)
+        }));
+        // After a failure the loop starts from scratch, as after any failed analysis.
+        if opened.unwrap_or(false) {
+            return;
+        }
         loop {
             let started = std::time::Instant::now();
             let result = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
                 let slot = self.catch_up();
                 let analysed_in = started.elapsed();
                 slot.as_ref().map(|analysed| {
-                    let line_count = LineSource::line_count(&analysed.lines());
-                    let (extra, extra_generation) = extra_findings(&self.extra, line_count);
+                    let lines = analysed.lines();
+                    let (extra, extra_generation) =
+                        extra_findings(&self.extra, LineSource::line_count(&lines));
+                    let published = PublishedText {
+                        analysis: &analysed.analysis,
+                        lines: &lines,
+                        all_ascii: analysed.rope.len_bytes() == analysed.rope.len_chars(),
+                        version: analysed.version,
+                    };
                     let message = self.publication(
-                        analysed,
+                        published,
                         context.encoding,
                         context.max_diagnostics,
                         &extra,
