@@ -6,15 +6,16 @@
 //!   it shares with its tasks; `capabilities.rs`: `initialize`; `configuration.rs`: the settings.
 //! - `handlers/`: one file per feature, converting the core's answers to LSP types.
 //! - `workspace/`: the workspace index, its updates, the libraries of open documents.
-//! - `documents.rs`: open documents, their analysis on snapshots, the worker that publishes;
+//! - `documents/`: open documents, their analysis on snapshots, the worker that publishes (a
+//!   `didOpen`'s first analysis read from its string, `opened_text.rs`, before the rope is built);
 //!   `execution_job.rs`: the run of a revision; `text_document.rs`: rope text, `apply_changes`;
 //!   `convert.rs`: positions in the negotiated encoding, spans to ranges, diagnostics;
 //!   `cross_file.rs`: the W3xx findings joined to the published diagnostics.
 //! - `publish/`: diagnostics publication (the `maxDiagnostics` limit, the one JSON encoder of
 //!   diagnostics, reuse of the unchanged items from one publication to the next).
-//! - `transport/`: one reader, one framing parser, one writer around the framework's dispatch; the
-//!   process's stdio and allocator settings (the crate's only `unsafe`); `log.rs`: logging and
-//!   slow-handler reports.
+//! - `transport/`: one reader, one framing parser, one writer around the framework's dispatch; in
+//!   `sys/`, the crate's only `unsafe`: the process's stdio and allocator settings, and frozen pages
+//!   handed to the stdout pipe; `log.rs`: logging and slow-handler reports.
 //! - `settings.rs`, `ext.rs`, `uris.rs`, `locks.rs`: settings, own protocol types, URIs, locks.
 
 mod capabilities;
