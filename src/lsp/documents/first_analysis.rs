@@ -1,12 +1,28 @@
-//! The first analysis of a just-opened document, read from the `didOpen`'s string before the rope
-//! exists (`opened_text.rs`): its diagnostics are published first, and the rope is built after.
+//! The text of a just-opened document before its rope exists (`opened_text.rs`): its first
+//! analysis, read from the `didOpen`'s string and published first, and the rope built after.
 
-use super::{lock, Analysed, OpenDocument, Pending, PublishedText, WorkerContext};
+use super::{lock, Analysed, OpenDocument, Pending, PublishedText, TextState, WorkerContext};
 use crate::analysis::document::{DocumentAnalysis, LineSource};
 use crate::lsp::cross_file::extra_findings;
 use crate::lsp::log;
-use crate::lsp::opened_text::FlatLines;
+use crate::lsp::opened_text::{rope_from_string, FlatLines};
+use crate::lsp::text_document::DocumentText;
+use ropey::Rope;
 use std::sync::{Arc, Mutex};
+
+impl TextState {
+    /// The text with its rope, which is built now if it was not yet.
+    pub(super) fn with_rope(&mut self) -> &mut DocumentText {
+        if let Some(opened) = self.opened.take() {
+            self.text.rope = match Arc::try_unwrap(opened) {
+                Ok(string) => rope_from_string(string),
+                // The first analysis still reads the string: the rope is a copy of it.
+                Err(shared) => Rope::from_str(&shared),
+            };
+        }
+        &mut self.text
+    }
+}
 
 impl OpenDocument {
     /// Analyses and publishes the text of the `didOpen` from its string, then builds the rope and

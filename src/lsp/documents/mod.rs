@@ -3,7 +3,9 @@
 //! the diagnostics of the newest version and never those of a version already replaced.
 //!
 //! Lock order: a document's `analysis` lock may be taken before its `text` lock, never after it.
-//! The `text` lock is only held for short, non-blocking work (applying an edit, taking a snapshot).
+//! The `text` lock is only held for short, non-blocking work (applying an edit, taking a snapshot),
+//! and once per `didOpen` while the rope is built from the opened string (15-30 ms for 33 MB): an
+//! edit that comes then waits for it.
 
 use crate::analysis::document::{DocumentAnalysis, LineSource};
 use crate::analysis::library::ProgramLibrary;
@@ -16,7 +18,7 @@ use crate::lsp::convert::PositionEncoding;
 use crate::lsp::cross_file::{extra_findings, ExtraDiagnostics};
 use crate::lsp::execution_job::{CachedExecution, CachedTimes, ExecutionJob};
 use crate::lsp::log;
-use crate::lsp::opened_text::{rope_from_string, FlatLines};
+use crate::lsp::opened_text::FlatLines;
 use crate::lsp::publish::limit::{note, note_diagnostic, within_limit};
 use crate::lsp::publish::wire::WireDiagnostic;
 use crate::lsp::publish::{self, Publisher};
@@ -56,20 +58,6 @@ struct TextState {
     config: Arc<MachineConfig>,
     worker_running: bool,
     closed: bool,
-}
-
-impl TextState {
-    /// The text with its rope, which is built now if it was not yet.
-    fn with_rope(&mut self) -> &mut DocumentText {
-        if let Some(opened) = self.opened.take() {
-            self.text.rope = match Arc::try_unwrap(opened) {
-                Ok(string) => rope_from_string(string),
-                // The first analysis still reads the string: the rope is a copy of it.
-                Err(shared) => Rope::from_str(&shared),
-            };
-        }
-        &mut self.text
-    }
 }
 
 /// What a publication is made of: an analysis, the lines it read, and their version.
@@ -196,7 +184,6 @@ pub struct OpenDocument {
 /// The text of a document as it is now, with what the workspace index needs to read it.
 pub struct TextSnapshot {
     pub rope: Rope,
-    pub version: i32,
     pub revision: u64,
     pub config: Arc<MachineConfig>,
 }
@@ -288,13 +275,17 @@ impl OpenDocument {
         lock(&self.text).revision
     }
 
-    /// The rope (a cheap copy), version, revision and configuration as they are now.
+    /// The version of the text as it is now (without building the rope of an opened text).
+    pub fn version(&self) -> i32 {
+        lock(&self.text).text.version
+    }
+
+    /// The rope (a cheap copy), revision and configuration as they are now.
     pub fn text_snapshot(&self) -> TextSnapshot {
         let mut text = lock(&self.text);
         let rope = text.with_rope().rope.clone();
         TextSnapshot {
             rope,
-            version: text.text.version,
             revision: text.revision,
             config: Arc::clone(&text.config),
         }

@@ -148,7 +148,7 @@ impl<'a> LineTexts<'a> {
         self.shared
             .documents
             .get(uri)
-            .map(|document| document.text_snapshot().version)
+            .map(|document| document.version())
     }
 
     pub fn location(&mut self, location: &IdeLocation) -> Option<Location> {
