@@ -2,7 +2,8 @@
 //! pipe takes them while another thread sends hovers and `sinumerik.endpointPreview` commands. Then:
 //! the server's text equals the edits applied here, the diagnostics published for the last version
 //! equal a from-scratch analysis of that text, every request got a result or "content modified"
-//! (-32801), and no publication for a version came after one for a newer version.
+//! (-32801), and no publication for a version came after one for a newer version. A second test
+//! sends edits while the first analysis of a 200,000-line program still reads the opened string.
 //!
 //! `STORM_EDITS` (default 10,000), `STORM_LINES` (default 100,000) and `STORM_SEED` change the run,
 //! `STORM_LOG=1` prints the server's log (its slow analyses and handlers);
@@ -164,6 +165,53 @@ fn an_edit_storm_with_hovers_and_previews_ends_in_step_with_a_fresh_analysis() {
     if std::env::var_os("STORM_LOG").is_some() {
         eprintln!("the server's log:\n{}", server.log());
     }
+    assert_eq!(server.shutdown(), Some(0));
+}
+
+/// Edits that come while the first analysis still reads the opened text (before the rope exists,
+/// `lsp/opened_text.rs`) are applied in order, and the last diagnostics are those of the edited text.
+#[test]
+fn edits_during_the_first_analysis_end_in_step_with_a_fresh_analysis() {
+    let line_count = 200_000;
+    let mut random = Random::new(3);
+    let text = program(&mut random, line_count, "\n");
+    let mut document = LineDocument::new(&text, "\n");
+    let mut server = RawServer::spawn();
+    server.initialize();
+    server.open(URI, 1, &text);
+    // Sent without waiting for the first diagnostics, spread over the first analysis: before the
+    // worker reads the string, while it does, and while the rope is built.
+    let mut version = 1;
+    for _ in 0..40 {
+        std::thread::sleep(Duration::from_millis(2));
+        version += 1;
+        let change = document.random_edit(&mut random).to_json();
+        server
+            .writer
+            .change(URI, version, Value::Array(vec![change]));
+    }
+    let expected = document.text();
+    assert_eq!(
+        server.document_text(URI),
+        Ok((version, expected.clone())),
+        "the server's text differs from the edits applied here"
+    );
+    let diagnostics = server.diagnostics(URI, version);
+    assert_eq!(
+        compare::published(&diagnostics),
+        compare::fresh(&expected),
+        "the last diagnostics differ from a fresh analysis of the final text"
+    );
+    let versions: Vec<i64> = server
+        .publications()
+        .into_iter()
+        .filter(|(uri, _)| uri == URI)
+        .filter_map(|(_, version)| version)
+        .collect();
+    assert!(
+        versions.windows(2).all(|pair| pair[0] <= pair[1]),
+        "diagnostics out of version order: {versions:?}"
+    );
     assert_eq!(server.shutdown(), Some(0));
 }
 
