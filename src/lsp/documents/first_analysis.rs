@@ -4,7 +4,6 @@
 use super::{lock, Analysed, OpenDocument, Pending, PublishedText, TextState, WorkerContext};
 use crate::analysis::document::{DocumentAnalysis, LineSource};
 use crate::lsp::cross_file::extra_findings;
-use crate::lsp::log;
 use crate::lsp::opened_text::{rope_from_string, FlatLines};
 use crate::lsp::text_document::DocumentText;
 use ropey::Rope;
@@ -63,24 +62,14 @@ impl OpenDocument {
         let message =
             self.publication(published, context.encoding, context.max_diagnostics, &extra);
         let count = analysis.diagnostics().len();
-        log::slow_with_sender(
-            || {
-                format!(
-                    "analysis ({} ms) and writing of {count} diagnostics",
-                    analysed_in.as_millis()
-                )
-            },
-            started.elapsed(),
-            &context.outgoing,
-        );
+        context.log_slow_publication(analysed_in, count, started);
         drop(lines);
         let mut text = lock(&self.text);
         if text.closed {
             text.worker_running = false;
             return true;
         }
-        let current =
-            text.revision == revision && lock(&self.extra).generation() == extra_generation;
+        let current = self.is_current(&text, revision, extra_generation);
         if current {
             // Sent under the lock: a newer revision's publication cannot overtake it.
             context.outgoing.send_parts(message);

@@ -11,21 +11,17 @@ use crate::analysis::document::{DocumentAnalysis, LineSource};
 use crate::analysis::library::ProgramLibrary;
 use crate::analysis::ProgramKind;
 use crate::config::MachineConfig;
-use crate::diagnostics::LineDiagnostic;
 use crate::ide::execution::DocumentExecution;
 use crate::ide::program_run::ProgramRun;
 use crate::lsp::convert::PositionEncoding;
 use crate::lsp::cross_file::{extra_findings, ExtraDiagnostics};
 use crate::lsp::execution_job::{CachedExecution, CachedTimes, ExecutionJob};
-use crate::lsp::log;
 use crate::lsp::opened_text::FlatLines;
-use crate::lsp::publish::limit::{note, note_diagnostic, within_limit};
-use crate::lsp::publish::wire::WireDiagnostic;
-use crate::lsp::publish::{self, Publisher};
+use crate::lsp::publish::Publisher;
 use crate::lsp::text_document::{
     apply_changes, core_line_count, ChangeError, DocumentText, RopeLineChange, RopeLines,
 };
-use crate::lsp::transport::outbox::{Outgoing, OutgoingSender, Part};
+use crate::lsp::transport::outbox::{Outgoing, OutgoingSender};
 use ropey::Rope;
 use std::collections::HashMap;
 use std::path::PathBuf;
@@ -36,6 +32,7 @@ use tower_lsp_server::ls_types::{TextDocumentContentChangeEvent, Uri};
 pub use crate::lsp::locks::lock;
 
 mod first_analysis;
+mod publication;
 
 /// What changed since the analysis last looked at the text.
 #[derive(Debug, Clone, Copy)]
@@ -224,50 +221,6 @@ impl OpenDocument {
             published: Mutex::new(None),
             extra: Mutex::new(ExtraDiagnostics::default()),
         }
-    }
-
-    /// The `publishDiagnostics` body of the analysis's diagnostics (at most `limit` of them, and
-    /// then a note) and the cross-file findings `extra`, taking over what the last one wrote where
-    /// it still holds (`publish/mod.rs`).
-    fn publication(
-        &self,
-        published: PublishedText<'_>,
-        encoding: PositionEncoding,
-        limit: Option<usize>,
-        extra: &[LineDiagnostic],
-    ) -> Vec<Part> {
-        let PublishedText {
-            analysis,
-            lines,
-            all_ascii,
-            version,
-        } = published;
-        let (diagnostics, left_out) = within_limit(analysis.diagnostics(), limit);
-        let ranges = publish::ranges(&diagnostics, |line| lines.line(line), all_ascii, encoding);
-        let extra_ranges = publish::ranges(extra, |line| lines.line(line), all_ascii, encoding);
-        let note_text = limit
-            .filter(|_| left_out > 0)
-            .map(|limit| note(left_out, limit));
-        let more: Vec<WireDiagnostic<'_>> = note_text
-            .as_deref()
-            .map(note_diagnostic)
-            .into_iter()
-            .chain(
-                extra
-                    .iter()
-                    .zip(extra_ranges)
-                    .map(|(item, range)| WireDiagnostic::of(item, range)),
-            )
-            .collect();
-        let mut published = lock(&self.published);
-        if published.as_ref().is_none_or(|(last, _)| *last != encoding) {
-            *published = Some((encoding, Publisher::default()));
-        }
-        let Some((_, publisher)) = published.as_mut() else {
-            return Vec::new();
-        };
-        let items = publisher.encode_shared(&diagnostics, ranges);
-        publish::publication_parts(&self.uri, Some(version), items, &more)
     }
 
     /// The current revision; a request remembers it to know whether its answer is still current.
@@ -513,16 +466,7 @@ impl OpenDocument {
                 })
             }));
             if let Ok(Some((_, _, count, analysed_in))) = &result {
-                log::slow_with_sender(
-                    || {
-                        format!(
-                            "analysis ({} ms) and writing of {count} diagnostics",
-                            analysed_in.as_millis()
-                        )
-                    },
-                    started.elapsed(),
-                    &context.outgoing,
-                );
+                context.log_slow_publication(*analysed_in, *count, started);
             }
             match result {
                 Ok(Some(((revision, extra_generation), message, _, _))) => {
@@ -531,9 +475,7 @@ impl OpenDocument {
                         text.worker_running = false;
                         return;
                     }
-                    if text.revision == revision
-                        && lock(&self.extra).generation() == extra_generation
-                    {
+                    if self.is_current(&text, revision, extra_generation) {
                         // Sent under the lock: a newer revision's publication cannot overtake it.
                         context.outgoing.send_parts(message);
                         text.worker_running = false;
