@@ -298,6 +298,12 @@ pub fn check_framing(text: &str) -> Result<(), String> {
     for frame in &whole {
         if let Frame::Body(body) = frame {
             same_reading(body)?;
+            // The same body with a byte that is not UTF-8 somewhere (in the text, a field, a key).
+            if !body.is_empty() {
+                let mut damaged = body.clone();
+                damaged[body.len() * 7 / 13] = 0xff;
+                same_reading(&damaged)?;
+            }
             if let sinumerik_lsp::lsp::Incoming::Invalid { response, .. } =
                 read_message(body, &mut gate)
             {

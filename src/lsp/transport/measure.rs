@@ -2,7 +2,7 @@
 
 /// Whether `SINUMERIK_LSP_MEASURE_WITHOUT` (a comma-separated list) turns `piece` of the performance
 /// machinery off: `allocator`, `pipe-buffers`, `vmsplice` (`sys/`), `open-in-place`
-/// (`open_in_place.rs`) or `diagnostics-reuse` (`publish/`). For the side-by-side measurement of `docs/performance.md` only;
+/// and `literal-scan` (`open_in_place.rs`) or `diagnostics-reuse` (`publish/`). For the side-by-side measurement of `docs/performance.md` only;
 /// read once.
 pub fn measured_without(piece: &str) -> bool {
     static LIST: std::sync::OnceLock<Vec<String>> = std::sync::OnceLock::new();

@@ -4,7 +4,8 @@
 //! - `framing.rs`: the `Content-Length` framing, without IO (fuzzed, `examples/fuzz`).
 //! - `message.rs`: a body read once into the framework's `Request` or `Response`, or dropped with the
 //!   error response JSON-RPC asks for.
-//! - `open_in_place.rs`: a large `didOpen` read in its own buffer (its text unescaped in place).
+//! - `open_in_place.rs`: a large `didOpen` read in its own buffer (its text unescaped in place), its
+//!   text's literal checked and unescaped a word at a time by `json_literal.rs` (both fuzzed).
 //! - `outbox.rs`: the queue every outgoing message goes through, and the task that writes it.
 //! - `framing_reader.rs`: input -> framer -> message; `stderr.rs`: the lines the transport logs;
 //!   `measure.rs`: the switch of the side-by-side measurements.
@@ -18,6 +19,7 @@
 
 pub mod framing;
 mod framing_reader;
+pub mod json_literal;
 pub mod measure;
 pub mod message;
 pub mod open_in_place;

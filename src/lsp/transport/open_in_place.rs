@@ -1,11 +1,18 @@
 //! A large `didOpen` read in its own buffer. Parsed the ordinary way, the body of a 33 MB program is
 //! held three times at once: the body, serde_json's scratch buffer for the escaped text, and the
-//! string it becomes, which set the server's peak memory (`docs/performance.md`). Here serde_json
-//! reads the message with the text left as its raw literal (`RawValue`, borrowed from the body, which
-//! it checks as JSON), the literal is unescaped to the front of the body itself, and the body becomes
-//! the text's `String` without a copy. The request handed on is the one the ordinary path gives, with
-//! the same parameters; a message that is anything else goes the ordinary way.
+//! string it becomes, which set the server's peak memory (`docs/performance.md`). Here the text's
+//! literal is unescaped to the front of the body itself, and the body becomes the text's `String`
+//! without a copy. The request handed on is the one the ordinary path gives, with the same
+//! parameters; a message that is anything else goes the ordinary way.
+//!
+//! The literal is found by its key (`"text"`, then a colon and a string) and checked a word at a
+//! time (`json_literal.rs`); serde_json then reads the rest of the message, with an empty string in
+//! the literal's place, and must find the text there. Otherwise (a `"text"` key elsewhere in the
+//! first few places, or a text that is no string) serde_json reads the whole message with the text left as its raw
+//! literal (`RawValue`, borrowed from the body), which costs it a byte-by-byte reading of the text.
 
+use crate::lsp::transport::json_literal::{check_string, unescape_checked_to_front, StringProblem};
+use crate::lsp::transport::measure::measured_without;
 use serde::de::IgnoredAny;
 use serde::{Deserialize, Deserializer};
 use serde_json::value::RawValue;
@@ -58,10 +65,101 @@ pub enum OpenRead {
     /// A `didOpen` whose text has a `\u` escape of half a surrogate pair, which no string can hold:
     /// the ordinary path drops such a message as no JSON-RPC message, and so does this one.
     LoneSurrogate,
+    /// A `didOpen` whose text is not UTF-8: the ordinary path drops it as no JSON.
+    NotUtf8,
 }
 
+/// The key of the text.
+const TEXT_KEY: &[u8] = b"\"text\"";
+
+/// How many places of [`TEXT_KEY`] are tried before serde_json looks for the text itself: in what
+/// clients send, the first is the text's.
+const TEXT_KEY_TRIES: usize = 4;
+
 /// Reads `body` as a `didOpen` notification with the text unescaped in place (see the module).
-pub fn read_open_in_place(mut body: Vec<u8>) -> OpenRead {
+pub fn read_open_in_place(body: Vec<u8>) -> OpenRead {
+    let body = if measured_without("literal-scan") {
+        body
+    } else {
+        match read_with_text_found(body) {
+            Ok(read) => return read,
+            Err(body) => body,
+        }
+    };
+    read_with_serde(body)
+}
+
+/// The text's literal found by its key and checked by [`check_string`]; serde_json reads the
+/// message with an empty string in its place. The literal is the text only when serde_json's text
+/// is that empty string, at that place: anything else leaves the body untouched, for serde_json.
+fn read_with_text_found(mut body: Vec<u8>) -> Result<OpenRead, Vec<u8>> {
+    let mut from = 0;
+    for _ in 0..TEXT_KEY_TRIES {
+        let Some(found) = memchr::memmem::find(body.get(from..).unwrap_or_default(), TEXT_KEY)
+        else {
+            break;
+        };
+        let after_key = from + found + TEXT_KEY.len();
+        let Some(open) = value_string_after(&body, after_key) else {
+            from = after_key;
+            continue;
+        };
+        let Ok(literal) = check_string(&body, open + 1) else {
+            break;
+        };
+        let mut rest = Vec::with_capacity(body.len() - (literal.end - open) + 1);
+        rest.extend_from_slice(&body[..open]);
+        rest.extend_from_slice(b"\"\"");
+        rest.extend_from_slice(&body[literal.end + 1..]);
+        if let Some(fields) = fields_around_empty_text(&rest, open) {
+            let length = unescape_checked_to_front(&mut body, open + 1, literal.end);
+            body.truncate(length);
+            return Ok(request_from(fields, body));
+        }
+        from = literal.end + 1;
+    }
+    Err(body)
+}
+
+/// The index of the opening quote of a string after `index`, when JSON's space, a colon and JSON's
+/// space come first.
+fn value_string_after(body: &[u8], index: usize) -> Option<usize> {
+    let is_space = |byte: &u8| matches!(byte, b' ' | b'\t' | b'\n' | b'\r');
+    let colon = index + body.get(index..)?.iter().position(|byte| !is_space(byte))?;
+    if body[colon] != b':' {
+        return None;
+    }
+    let quote = colon
+        + 1
+        + body
+            .get(colon + 1..)?
+            .iter()
+            .position(|byte| !is_space(byte))?;
+    (body[quote] == b'"').then_some(quote)
+}
+
+/// The fields of the `didOpen` that `rest` is, when its text is the empty string at `open`.
+fn fields_around_empty_text(rest: &[u8], open: usize) -> Option<(String, String, i32)> {
+    // The ordinary path refuses a body that is not UTF-8 anywhere, in fields it ignores too.
+    std::str::from_utf8(rest).ok()?;
+    let message = serde_json::from_slice::<OpenMessage<'_>>(rest).ok()?;
+    if message.jsonrpc != "2.0" || message.method != DID_OPEN || message.id {
+        return None;
+    }
+    let item = message.params.text_document;
+    let literal = item.text.get().as_bytes();
+    let at = (literal.as_ptr() as usize).checked_sub(rest.as_ptr() as usize);
+    (literal == b"\"\"" && at == Some(open)).then(|| {
+        (
+            item.uri.into_owned(),
+            item.language_id.into_owned(),
+            item.version,
+        )
+    })
+}
+
+/// serde_json checks the message with the text as its raw literal, found wherever it is.
+fn read_with_serde(mut body: Vec<u8>) -> OpenRead {
     let Ok(message) = serde_json::from_slice::<OpenMessage<'_>>(&body) else {
         return OpenRead::Other(body);
     };
@@ -78,19 +176,34 @@ pub fn read_open_in_place(mut body: Vec<u8>) -> OpenRead {
         // The text is not a string: the ordinary path answers that.
         return OpenRead::Other(body);
     }
+    // serde_json does not check the bytes of fields it skips; the ordinary path refuses a body that
+    // is not UTF-8 anywhere.
+    if std::str::from_utf8(&body[..start]).is_err() || std::str::from_utf8(&body[end..]).is_err() {
+        return OpenRead::Other(body);
+    }
     // The small fields are taken out before the body's bytes change under the borrowed message.
-    let (uri, language_id, version) = (
+    let fields = (
         item.uri.into_owned(),
         item.language_id.into_owned(),
         item.version,
     );
-    let Some(length) = unescape_to_front(&mut body, start + 1, end - 1) else {
-        return OpenRead::LoneSurrogate;
-    };
+    match check_string(&body, start + 1) {
+        Ok(checked) if checked.end == end - 1 => {}
+        Ok(_) => return OpenRead::Other(body),
+        Err(StringProblem::LoneSurrogate) => return OpenRead::LoneSurrogate,
+        // serde_json checked the literal as JSON but not as UTF-8.
+        Err(StringProblem::NotJson) => return OpenRead::NotUtf8,
+    }
+    let length = unescape_checked_to_front(&mut body, start + 1, end - 1);
     body.truncate(length);
-    let Ok(text) = String::from_utf8(body) else {
-        // JSON is UTF-8 and the escapes give UTF-8: this does not happen, and costs nothing to keep.
-        return OpenRead::LoneSurrogate;
+    request_from(fields, body)
+}
+
+/// The `didOpen` request of the fields and the unescaped text.
+fn request_from((uri, language_id, version): (String, String, i32), text: Vec<u8>) -> OpenRead {
+    let Ok(text) = String::from_utf8(text) else {
+        // The literal was checked as UTF-8, and escapes give UTF-8: this does not happen.
+        return OpenRead::NotUtf8;
     };
     // Built by hand: `json!` would serialize the text, a copy of it.
     let mut item = Map::new();
@@ -102,72 +215,6 @@ pub fn read_open_in_place(mut body: Vec<u8>) -> OpenRead {
     params.insert("textDocument".into(), Value::Object(item));
     let params = Value::Object(params);
     OpenRead::Request(Request::build(DID_OPEN).params(params).finish())
-}
-
-/// Unescapes the contents of a JSON string literal, `bytes[start..end]` (between its quotes, checked
-/// as JSON by serde_json), to the front of `bytes`, and returns their length. Every escape is at
-/// least as long as what it stands for, so the writing never overtakes the reading. `None` for half
-/// a surrogate pair (which serde_json checks only when it makes a string) or an escape JSON does not
-/// have.
-pub fn unescape_to_front(bytes: &mut [u8], start: usize, end: usize) -> Option<usize> {
-    let end = end.min(bytes.len());
-    let mut read = start.min(end);
-    let mut write = 0;
-    while read < end {
-        let run_end = memchr::memchr(b'\\', &bytes[read..end]).map_or(end, |offset| read + offset);
-        bytes.copy_within(read..run_end, write);
-        write += run_end - read;
-        read = run_end;
-        if read == end {
-            break;
-        }
-        let (character, consumed) = match *bytes.get(read + 1).filter(|_| read + 1 < end)? {
-            b'"' => ('"', 2),
-            b'\\' => ('\\', 2),
-            b'/' => ('/', 2),
-            b'b' => ('\u{8}', 2),
-            b'f' => ('\u{c}', 2),
-            b'n' => ('\n', 2),
-            b'r' => ('\r', 2),
-            b't' => ('\t', 2),
-            b'u' => unicode_escape(&bytes[read..end])?,
-            _ => return None,
-        };
-        let mut encoded = [0; 4];
-        let encoded = character.encode_utf8(&mut encoded).as_bytes();
-        bytes[write..write + encoded.len()].copy_from_slice(encoded);
-        write += encoded.len();
-        read += consumed;
-    }
-    Some(write)
-}
-
-/// The character of the `\uXXXX` escape at the start of `bytes` (with its low half when it is the
-/// high half of a surrogate pair) and how many bytes it took.
-fn unicode_escape(bytes: &[u8]) -> Option<(char, usize)> {
-    let first = hex4(bytes.get(2..6)?)?;
-    match first {
-        0xD800..=0xDBFF => {
-            if bytes.get(6..8) != Some(b"\\u") {
-                return None;
-            }
-            let second = hex4(bytes.get(8..12)?)?;
-            if !(0xDC00..=0xDFFF).contains(&second) {
-                return None;
-            }
-            let code = 0x10000 + ((first - 0xD800) << 10) + (second - 0xDC00);
-            Some((char::from_u32(code)?, 12))
-        }
-        0xDC00..=0xDFFF => None,
-        _ => Some((char::from_u32(first)?, 6)),
-    }
-}
-
-fn hex4(digits: &[u8]) -> Option<u32> {
-    digits.iter().try_fold(0u32, |value, &digit| {
-        let nibble = (digit as char).to_digit(16)?;
-        Some(value * 16 + nibble)
-    })
 }
 
 #[cfg(test)]
@@ -211,6 +258,81 @@ mod tests {
             opened_text(open_body(r#""a\/b\u00e4\u00C4\ud83d\udee0""#)).as_deref(),
             Some("a/bäÄ🛠")
         );
+    }
+
+    /// What the ordinary path makes of `body`: the didOpen's text, or the kind of error.
+    fn ordinary(body: &[u8]) -> Result<String, i64> {
+        use crate::lsp::transport::message::{read_message, Incoming, InitializeGate};
+        match read_message(body, &mut InitializeGate::default()) {
+            Incoming::Request(request) => {
+                let params: DidOpenTextDocumentParams =
+                    serde_json::from_value(request.params().cloned().unwrap_or_default())
+                        .map_err(|_| 0)?;
+                Ok(params.text_document.text)
+            }
+            Incoming::Invalid { response, .. } => Err(match response.into_parts().1 {
+                Err(error) => error.code.code(),
+                Ok(_) => 0,
+            }),
+            Incoming::Response(_) => Err(1),
+        }
+    }
+
+    /// What reading in place makes of `body`, in the ordinary path's terms.
+    fn in_place(body: &[u8]) -> Result<String, i64> {
+        use crate::lsp::transport::message::{read_owned_message, Incoming, InitializeGate};
+        match read_owned_message(body.to_vec(), &mut InitializeGate::default()) {
+            (Incoming::Request(request), _) => {
+                let params: DidOpenTextDocumentParams =
+                    serde_json::from_value(request.params().cloned().unwrap_or_default())
+                        .map_err(|_| 0)?;
+                Ok(params.text_document.text)
+            }
+            (Incoming::Invalid { response, .. }, _) => Err(match response.into_parts().1 {
+                Err(error) => error.code.code(),
+                Ok(_) => 0,
+            }),
+            _ => Err(1),
+        }
+    }
+
+    #[test]
+    fn the_text_found_by_its_key_is_the_one_serde_json_finds() {
+        let program = "N10 G0 X1\nN20 \"text\":\"quoted\" Y2\r\n".repeat(3);
+        let literal = serde_json::to_string(&program).unwrap();
+        let bodies = [
+            // As clients send it, with spaces around the colon, and with the text first.
+            open_body(&literal).into_iter().collect::<Vec<u8>>(),
+            open_body(&literal)
+                .iter()
+                .map(|&byte| byte as char)
+                .collect::<String>()
+                .replace(r#""text":"#, "\"text\" :\n ")
+                .into_bytes(),
+            format!(
+                r#"{{"jsonrpc":"2.0","method":"textDocument/didOpen","params":{{"textDocument":{{"text":{literal},"uri":"file:///a.mpf","languageId":"sinumerik","version":3}}}}}}"#
+            )
+            .into_bytes(),
+            // Another "text" key first, in an object and in a string.
+            format!(
+                r#"{{"jsonrpc":"2.0","method":"textDocument/didOpen","params":{{"x":{{"text":"decoy"}},"y":"\"text\":\"","textDocument":{{"uri":"file:///a.mpf","languageId":"sinumerik","version":3,"text":{literal}}}}}}}"#
+            )
+            .into_bytes(),
+        ];
+        for body in &bodies {
+            assert_eq!(in_place(body), Ok(program.clone()));
+            assert_eq!(ordinary(body), Ok(program.clone()));
+        }
+        // Bytes that are not UTF-8, in the text or in a field nobody reads, make no JSON either way.
+        let mut in_text = open_body(r#""N10 X1 and more to fill the words""#);
+        let at = in_text.len() - 8;
+        in_text[at] = 0xff;
+        let mut in_field = open_body(r#""N10 X1""#);
+        in_field.splice(1..1, b"\"x\":\"\xfe\",".iter().copied());
+        for body in [in_text, in_field] {
+            assert_eq!(in_place(&body), ordinary(&body));
+            assert!(ordinary(&body).is_err());
+        }
     }
 
     #[test]
