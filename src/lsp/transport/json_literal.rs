@@ -1,13 +1,12 @@
-//! A JSON string literal of megabytes, checked and unescaped in two passes that read it eight bytes at
-//! a time: the text of a large `didOpen` (`open_in_place.rs`). serde_json checks such a literal a
-//! byte at a time, and the text of a program has an escape on every line (its `\n`), where a search
-//! for the next backslash by a library call costs more than the line; here a word without anything
-//! special in it is passed (checking) or moved (unescaping) in one step.
+//! A JSON string literal of megabytes: the text of a large `didOpen` (`open_in_place.rs`). Its end
+//! is found by a search for quotes, then it is checked and unescaped in one pass that reads it eight
+//! bytes at a time. serde_json checks such a literal a byte at a time, and the text of a program has
+//! an escape on every line (its `\n`), where a search for the next backslash by a library call costs
+//! more than the line; here a word without a backslash or a control character is moved in one step.
 
 /// Eight copies of one byte, and the high bit of each byte of a word.
 const ONES: u64 = 0x0101_0101_0101_0101;
 const HIGH_BITS: u64 = 0x8080_8080_8080_8080;
-const QUOTES: u64 = ONES * b'"' as u64;
 const BACKSLASHES: u64 = ONES * b'\\' as u64;
 
 /// The high bit of each byte of `word` that is below `limit` (at most 128). A byte that is below
@@ -28,59 +27,32 @@ fn word_at(bytes: &[u8], index: usize) -> Option<u64> {
     Some(u64::from_le_bytes(eight.try_into().ok()?))
 }
 
-/// A literal that JSON allows, as [`check_string`] found it.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub struct CheckedString {
-    /// The index of the closing quote.
-    pub end: usize,
-}
-
 /// Why a literal is not a string JSON allows (or one a Rust string cannot hold).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum StringProblem {
-    /// Not JSON: a raw control character, an escape JSON does not have, bytes that are not UTF-8, or
-    /// no closing quote.
+    /// Not JSON: a raw control character or an escape JSON does not have.
     NotJson,
-    /// A `\u` escape of half a surrogate pair: JSON (as serde_json reads it without making a string)
-    /// lets it pass, but no string can hold it.
+    /// A `\u` escape of half a surrogate pair: JSON (as serde_json reads it without making a
+    /// string) lets it pass, but no string can hold it.
     LoneSurrogate,
 }
 
-/// Checks the string literal whose contents start at `start` (after its opening quote) the way
-/// serde_json checks a string it makes, and finds its closing quote.
-pub fn check_string(bytes: &[u8], start: usize) -> Result<CheckedString, StringProblem> {
-    let mut index = start;
-    // The high bits of every word read: whether anything but ASCII may be in the literal.
-    let mut seen = 0u64;
+/// The index of the quote that closes the string literal whose contents start at `start` (after its
+/// opening quote): the first quote after an even number of backslashes. Whether what lies between is
+/// a string JSON allows is for [`unescape_to_front`] to say.
+pub fn closing_quote(bytes: &[u8], start: usize) -> Option<usize> {
+    let mut from = start;
     loop {
-        while let Some(word) = word_at(bytes, index) {
-            let special = zero_bytes(word ^ QUOTES)
-                | zero_bytes(word ^ BACKSLASHES)
-                | bytes_below(word, 0x20);
-            seen |= word;
-            if special != 0 {
-                index += (special.trailing_zeros() / 8) as usize;
-                break;
-            }
-            index += 8;
+        let quote = from + memchr::memchr(b'"', bytes.get(from..)?)?;
+        let backslashes = bytes[start..quote]
+            .iter()
+            .rev()
+            .take_while(|&&byte| byte == b'\\')
+            .count();
+        if backslashes % 2 == 0 {
+            return Some(quote);
         }
-        let Some(&byte) = bytes.get(index) else {
-            return Err(StringProblem::NotJson);
-        };
-        seen |= u64::from(byte);
-        match byte {
-            b'"' => {
-                // The words may have read past the quote: only then is the literal read again.
-                let contents = bytes.get(start..index).unwrap_or_default();
-                if seen & HIGH_BITS != 0 && std::str::from_utf8(contents).is_err() {
-                    return Err(StringProblem::NotJson);
-                }
-                return Ok(CheckedString { end: index });
-            }
-            b'\\' => index += escape(bytes.get(index..).unwrap_or_default())?.1,
-            0..=0x1f => return Err(StringProblem::NotJson),
-            _ => index += 1,
-        }
+        from = quote + 1;
     }
 }
 
@@ -137,23 +109,32 @@ fn hex4(digits: Option<&[u8]>) -> Result<u32, StringProblem> {
         .ok_or(StringProblem::NotJson)
 }
 
-/// Unescapes the contents of the literal `bytes[start..end]`, which [`check_string`] accepted, to
-/// the front of `bytes`, and returns their length. Every escape is at least as long as what it stands
-/// for, so the writing never overtakes the reading; the bytes after the literal may be overwritten.
-/// Given contents it did not accept, it stops at the first escape it cannot read.
-pub fn unescape_checked_to_front(bytes: &mut [u8], start: usize, end: usize) -> usize {
+/// Unescapes the contents of the string literal `bytes[start..end]` (between its quotes, see
+/// [`closing_quote`]) to the front of `bytes`, checking them as serde_json checks a string it makes,
+/// and returns the text's length and whether it had half a surrogate pair (written as U+FFFD: no
+/// string can hold the half; the caller drops the message). Every escape is at least as long as what it stands for, so the writing
+/// never overtakes the reading; what follows the text may be overwritten. Bytes that are not UTF-8
+/// are left for the caller to find in the text, which is UTF-8 exactly when the literal is (escapes
+/// give whole characters, and stand between characters): the text is made into a string anyway.
+pub fn unescape_to_front(
+    bytes: &mut [u8],
+    start: usize,
+    end: usize,
+) -> Result<Unescaped, StringProblem> {
     let end = end.min(bytes.len());
     let mut read = start.min(end);
     let mut write = 0;
+    let mut lone_surrogate = false;
     while read < end {
-        // A run without a backslash moves a word at a time. A word is written whole only when all
-        // of it is moved: otherwise the write could reach bytes that are still to be read.
+        // A run without a backslash or a control character moves a word at a time. A word is
+        // written whole only when all of it is moved: otherwise the write could reach bytes that
+        // are still to be read.
         if let Some(word) = word_at(bytes, read) {
-            let backslashes = zero_bytes(word ^ BACKSLASHES);
-            let run = if backslashes == 0 {
+            let special = zero_bytes(word ^ BACKSLASHES) | bytes_below(word, 0x20);
+            let run = if special == 0 {
                 8
             } else {
-                (backslashes.trailing_zeros() / 8) as usize
+                (special.trailing_zeros() / 8) as usize
             }
             .min(end - read);
             if run == 8 {
@@ -166,14 +147,23 @@ pub fn unescape_checked_to_front(bytes: &mut [u8], start: usize, end: usize) -> 
             if run == 8 || read == end {
                 continue;
             }
-        } else if bytes[read] != b'\\' {
+        } else if bytes[read] != b'\\' && bytes[read] >= 0x20 {
             bytes[write] = bytes[read];
             read += 1;
             write += 1;
             continue;
         }
-        let Ok((character, consumed)) = escape(&bytes[read..end]) else {
-            break;
+        if bytes[read] < 0x20 {
+            return Err(StringProblem::NotJson);
+        }
+        let (character, consumed) = match escape(&bytes[read..end]) {
+            Ok(escaped) => escaped,
+            // Kept looking: anything that is not JSON after it decides.
+            Err(StringProblem::LoneSurrogate) => {
+                lone_surrogate = true;
+                ('\u{fffd}', 6)
+            }
+            Err(StringProblem::NotJson) => return Err(StringProblem::NotJson),
         };
         let mut encoded = [0; 4];
         let encoded = character.encode_utf8(&mut encoded).as_bytes();
@@ -181,26 +171,51 @@ pub fn unescape_checked_to_front(bytes: &mut [u8], start: usize, end: usize) -> 
         write += encoded.len();
         read += consumed;
     }
-    write
+    Ok(Unescaped {
+        length: write,
+        lone_surrogate,
+    })
+}
+
+/// What [`unescape_to_front`] made of a literal that has nothing that is not JSON but bytes that may
+/// not be UTF-8.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Unescaped {
+    pub length: usize,
+    pub lone_surrogate: bool,
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
 
-    /// What the two passes make of `literal` (with its quotes), and serde_json's reading of it.
-    fn both(literal: &[u8]) -> (Result<String, StringProblem>, Option<String>) {
-        let theirs = serde_json::from_slice::<String>(literal).ok();
+    /// What the literal's end and the unescaping make of `literal` (with its quotes), in serde_json's
+    /// terms: the string, or why there is none.
+    fn ours(literal: &[u8]) -> Result<String, StringProblem> {
         let mut bytes = literal.to_vec();
-        let ours = check_string(&bytes, 1).and_then(|checked| {
-            if checked.end + 1 != literal.len() {
-                return Err(StringProblem::NotJson);
+        let end = closing_quote(&bytes, 1).ok_or(StringProblem::NotJson)?;
+        if end + 1 != literal.len() {
+            return Err(StringProblem::NotJson);
+        }
+        let unescaped = unescape_to_front(&mut bytes, 1, end)?;
+        bytes.truncate(unescaped.length);
+        let text = String::from_utf8(bytes).map_err(|_| StringProblem::NotJson)?;
+        match unescaped.lone_surrogate {
+            true => Err(StringProblem::LoneSurrogate),
+            false => Ok(text),
+        }
+    }
+
+    /// serde_json's reading: the string, or whether the literal is JSON at all.
+    fn theirs(literal: &[u8]) -> Result<String, StringProblem> {
+        serde_json::from_slice::<String>(literal).map_err(|_| {
+            match std::str::from_utf8(literal).is_ok()
+                && serde_json::from_slice::<serde::de::IgnoredAny>(literal).is_ok()
+            {
+                true => StringProblem::LoneSurrogate,
+                false => StringProblem::NotJson,
             }
-            let length = unescape_checked_to_front(&mut bytes, 1, checked.end);
-            bytes.truncate(length);
-            String::from_utf8(bytes).map_err(|_| StringProblem::NotJson)
-        });
-        (ours, theirs)
+        })
     }
 
     #[test]
@@ -218,22 +233,19 @@ mod tests {
             for pad in 0..9 {
                 let text = format!("{}{text}", "x".repeat(pad));
                 let literal = serde_json::to_vec(&text).unwrap();
-                assert_eq!(both(&literal), (Ok(text.clone()), Some(text.clone())));
+                assert_eq!(ours(&literal), Ok(text.clone()));
+                assert_eq!(theirs(&literal), Ok(text.clone()));
             }
         }
         // Escapes serde_json does not write itself: \/, \u of either letter case, a surrogate pair.
         let literal = br#""a\/b\u00e4\u00C4\ud83d\udee0 and the rest of a line""#;
-        assert_eq!(both(literal).0, Ok("a/bäÄ🛠 and the rest of a line".into()));
-        assert_eq!(
-            both(literal).1.as_deref(),
-            Some("a/bäÄ🛠 and the rest of a line")
-        );
+        assert_eq!(ours(literal), Ok("a/bäÄ🛠 and the rest of a line".into()));
+        assert_eq!(ours(literal), theirs(literal));
     }
 
     #[test]
-    fn what_serde_json_refuses_is_refused() {
-        let refused: [&[u8]; 9] = [
-            b"\"no closing quote",
+    fn what_serde_json_refuses_is_refused_for_the_same_reason() {
+        let refused: [&[u8]; 12] = [
             b"\"raw\ncontrol character in a long literal\"",
             b"\"\x01\"",
             b"\"an escape \\x JSON does not have\"",
@@ -241,14 +253,19 @@ mod tests {
             b"\"\\uZZZZ and more to fill a word\"",
             b"\"not UTF-8: \xff\xfe in a long literal\"",
             b"\"cut UTF-8: \xe4\xb8\"",
-            b"\"ends in a backslash\\",
+            br#""\ud83d""#,
+            br#""\udee0x""#,
+            br#""\ud83d\u0041 and more""#,
+            // Half a pair and then something that is not JSON, or not UTF-8: not JSON.
+            b"\"\\ud83d and a raw \x02 later\"",
+            b"\"\\udee0 and \xff later in the literal\"",
         ];
         for literal in refused {
-            let (ours, theirs) = both(literal);
-            assert_eq!(theirs, None, "{}", String::from_utf8_lossy(literal));
+            let theirs = theirs(literal);
+            assert!(theirs.is_err(), "{}", String::from_utf8_lossy(literal));
             assert_eq!(
-                ours,
-                Err(StringProblem::NotJson),
+                ours(literal),
+                theirs,
                 "{}",
                 String::from_utf8_lossy(literal)
             );
@@ -256,22 +273,13 @@ mod tests {
     }
 
     #[test]
-    fn half_a_surrogate_pair_is_told_apart() {
-        for literal in [r#""\ud83d""#, r#""\udee0x""#, r#""\ud83d\u0041 and more""#] {
-            assert_eq!(
-                check_string(literal.as_bytes(), 1),
-                Err(StringProblem::LoneSurrogate)
-            );
-        }
-    }
-
-    #[test]
-    fn the_closing_quote_is_found_before_what_follows() {
-        let body = br#""N10 X1\nN20 \"quoted\" X2\n","version":7,"more":"ab""#;
-        let checked = check_string(body, 1).unwrap();
-        assert_eq!(&body[checked.end..checked.end + 11], br#"","version""#);
+    fn the_closing_quote_is_the_first_after_an_even_number_of_backslashes() {
+        let body = br#""N10 X1\nN20 \"quoted\" X2\\","version":7,"more":"ab""#;
+        let end = closing_quote(body, 1).unwrap();
+        assert_eq!(&body[end..end + 11], br#"","version""#);
         let mut bytes = body.to_vec();
-        let length = unescape_checked_to_front(&mut bytes, 1, checked.end);
-        assert_eq!(&bytes[..length], b"N10 X1\nN20 \"quoted\" X2\n");
+        let unescaped = unescape_to_front(&mut bytes, 1, end).unwrap();
+        assert_eq!(&bytes[..unescaped.length], b"N10 X1\nN20 \"quoted\" X2\\");
+        assert_eq!(closing_quote(br#""no end\""#, 1), None);
     }
 }

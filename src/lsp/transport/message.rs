@@ -107,7 +107,7 @@ pub fn read_owned_message(body: Vec<u8>, gate: &mut InitializeGate) -> (Incoming
     match read_open_in_place(body) {
         OpenRead::Request(request) => (Incoming::Request(request), None),
         OpenRead::LoneSurrogate => (invalid(Id::Null, Problem::NotMessage, length), None),
-        OpenRead::NotUtf8 => (invalid(Id::Null, Problem::NotJson, length), None),
+        OpenRead::NotJson => (invalid(Id::Null, Problem::NotJson, length), None),
         OpenRead::Other(body) => (read_message(&body, gate), Some(body)),
     }
 }

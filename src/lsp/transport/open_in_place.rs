@@ -11,7 +11,7 @@
 //! first few places, or a text that is no string) serde_json reads the whole message with the text left as its raw
 //! literal (`RawValue`, borrowed from the body), which costs it a byte-by-byte reading of the text.
 
-use crate::lsp::transport::json_literal::{check_string, unescape_checked_to_front, StringProblem};
+use crate::lsp::transport::json_literal::{closing_quote, unescape_to_front};
 use crate::lsp::transport::measure::measured_without;
 use serde::de::IgnoredAny;
 use serde::{Deserialize, Deserializer};
@@ -65,8 +65,8 @@ pub enum OpenRead {
     /// A `didOpen` whose text has a `\u` escape of half a surrogate pair, which no string can hold:
     /// the ordinary path drops such a message as no JSON-RPC message, and so does this one.
     LoneSurrogate,
-    /// A `didOpen` whose text is not UTF-8: the ordinary path drops it as no JSON.
-    NotUtf8,
+    /// A `didOpen` whose text is not JSON or not UTF-8: the ordinary path drops it as no JSON.
+    NotJson,
 }
 
 /// The key of the text.
@@ -89,10 +89,11 @@ pub fn read_open_in_place(body: Vec<u8>) -> OpenRead {
     read_with_serde(body)
 }
 
-/// The text's literal found by its key and checked by [`check_string`]; serde_json reads the
-/// message with an empty string in its place. The literal is the text only when serde_json's text
-/// is that empty string, at that place: anything else leaves the body untouched, for serde_json.
-fn read_with_text_found(mut body: Vec<u8>) -> Result<OpenRead, Vec<u8>> {
+/// The text's literal found by its key and its end by [`closing_quote`]; serde_json reads the
+/// message with an empty string in its place. The literal is the text only when serde_json's text is
+/// that empty string, at that place: anything else leaves the body untouched, for serde_json. The
+/// rest of the message being a `didOpen`, the literal decides alone what the message is.
+fn read_with_text_found(body: Vec<u8>) -> Result<OpenRead, Vec<u8>> {
     let mut from = 0;
     for _ in 0..TEXT_KEY_TRIES {
         let Some(found) = memchr::memmem::find(body.get(from..).unwrap_or_default(), TEXT_KEY)
@@ -104,19 +105,17 @@ fn read_with_text_found(mut body: Vec<u8>) -> Result<OpenRead, Vec<u8>> {
             from = after_key;
             continue;
         };
-        let Ok(literal) = check_string(&body, open + 1) else {
+        let Some(end) = closing_quote(&body, open + 1) else {
             break;
         };
-        let mut rest = Vec::with_capacity(body.len() - (literal.end - open) + 1);
+        let mut rest = Vec::with_capacity(body.len() - (end - open) + 1);
         rest.extend_from_slice(&body[..open]);
         rest.extend_from_slice(b"\"\"");
-        rest.extend_from_slice(&body[literal.end + 1..]);
+        rest.extend_from_slice(&body[end + 1..]);
         if let Some(fields) = fields_around_empty_text(&rest, open) {
-            let length = unescape_checked_to_front(&mut body, open + 1, literal.end);
-            body.truncate(length);
-            return Ok(request_from(fields, body));
+            return Ok(text_to_front(body, open + 1, end, fields));
         }
-        from = literal.end + 1;
+        from = end + 1;
     }
     Err(body)
 }
@@ -159,7 +158,7 @@ fn fields_around_empty_text(rest: &[u8], open: usize) -> Option<(String, String,
 }
 
 /// serde_json checks the message with the text as its raw literal, found wherever it is.
-fn read_with_serde(mut body: Vec<u8>) -> OpenRead {
+fn read_with_serde(body: Vec<u8>) -> OpenRead {
     let Ok(message) = serde_json::from_slice::<OpenMessage<'_>>(&body) else {
         return OpenRead::Other(body);
     };
@@ -187,24 +186,34 @@ fn read_with_serde(mut body: Vec<u8>) -> OpenRead {
         item.language_id.into_owned(),
         item.version,
     );
-    match check_string(&body, start + 1) {
-        Ok(checked) if checked.end == end - 1 => {}
-        Ok(_) => return OpenRead::Other(body),
-        Err(StringProblem::LoneSurrogate) => return OpenRead::LoneSurrogate,
-        // serde_json checked the literal as JSON but not as UTF-8.
-        Err(StringProblem::NotJson) => return OpenRead::NotUtf8,
-    }
-    let length = unescape_checked_to_front(&mut body, start + 1, end - 1);
-    body.truncate(length);
-    request_from(fields, body)
+    text_to_front(body, start + 1, end - 1, fields)
 }
 
-/// The `didOpen` request of the fields and the unescaped text.
-fn request_from((uri, language_id, version): (String, String, i32), text: Vec<u8>) -> OpenRead {
-    let Ok(text) = String::from_utf8(text) else {
-        // The literal was checked as UTF-8, and escapes give UTF-8: this does not happen.
-        return OpenRead::NotUtf8;
+/// The `didOpen` of `fields` and the text of the literal `body[start..end]` (between its quotes),
+/// unescaped to the front of the body; the message dropped as the ordinary path drops it when the
+/// literal is not JSON, not UTF-8, or holds half a surrogate pair.
+fn text_to_front(
+    mut body: Vec<u8>,
+    start: usize,
+    end: usize,
+    fields: (String, String, i32),
+) -> OpenRead {
+    let unescaped = match unescape_to_front(&mut body, start, end) {
+        Ok(unescaped) => unescaped,
+        Err(_) => return OpenRead::NotJson,
     };
+    body.truncate(unescaped.length);
+    let Ok(text) = String::from_utf8(body) else {
+        return OpenRead::NotJson;
+    };
+    if unescaped.lone_surrogate {
+        return OpenRead::LoneSurrogate;
+    }
+    request_from(fields, text)
+}
+
+/// The `didOpen` request of the fields and the text.
+fn request_from((uri, language_id, version): (String, String, i32), text: String) -> OpenRead {
     // Built by hand: `json!` would serialize the text, a copy of it.
     let mut item = Map::new();
     item.insert("uri".into(), Value::String(uri));
