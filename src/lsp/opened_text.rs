@@ -94,10 +94,6 @@ impl LineSource for FlatLines<'_> {
         self.line_count
     }
 
-    fn whole_text(&self) -> Option<&str> {
-        Some(self.text)
-    }
-
     fn line(&self, index: usize) -> Cow<'_, str> {
         if index >= self.line_count {
             return Cow::Borrowed("");

@@ -44,21 +44,18 @@ impl DocumentAnalysis {
 
     /// Reads the whole-document facts (macros, `PROC` headers) and gives the state before line 0.
     pub(super) fn prepare_from_scratch(&mut self, source: &dyn LineSource) -> Checkpoint {
-        let facts = DocumentFacts::of_all_lines(source);
+        let facts = DocumentFacts::read(source, 0, usize::MAX);
         self.start_from_facts(facts)
     }
 
     /// [`DocumentAnalysis::prepare_from_scratch`] with the lines from `middle` on read on a second
-    /// thread from `helper_source` (the same text), unless the text is searched whole.
+    /// thread from `helper_source` (the same text).
     pub(super) fn prepare_from_scratch_in_parallel(
         &mut self,
         source: &dyn LineSource,
         helper_source: &mut (dyn LineSource + Send),
         middle: usize,
     ) -> Checkpoint {
-        if source.whole_text().is_some() {
-            return self.prepare_from_scratch(source);
-        }
         let (mut facts, second) = std::thread::scope(|scope| {
             let second =
                 scope.spawn(move || DocumentFacts::read(&*helper_source, middle, usize::MAX));

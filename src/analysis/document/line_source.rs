@@ -9,12 +9,6 @@ pub trait LineSource {
     fn line_count(&self) -> usize;
     fn line(&self, index: usize) -> Cow<'_, str>;
 
-    /// The whole text, when the source holds it as one string: a reading that looks for a few
-    /// letters in all lines searches it whole instead of line by line.
-    fn whole_text(&self) -> Option<&str> {
-        None
-    }
-
     /// Hands the lines from `start` on to `visit`, in order, until it returns false or the lines end.
     /// A source that can walk its lines faster than by index (a rope) overrides this.
     fn for_each_line(&self, start: usize, visit: &mut dyn FnMut(usize, &str) -> bool) {
@@ -44,10 +38,6 @@ impl<'a> TextLines<'a> {
 impl LineSource for TextLines<'_> {
     fn line_count(&self) -> usize {
         self.ranges.len()
-    }
-
-    fn whole_text(&self) -> Option<&str> {
-        Some(self.text)
     }
 
     fn line(&self, index: usize) -> Cow<'_, str> {

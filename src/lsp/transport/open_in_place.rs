@@ -76,6 +76,9 @@ const TEXT_KEY: &[u8] = b"\"text\"";
 /// clients send, the first is the text's.
 const TEXT_KEY_TRIES: usize = 4;
 
+/// The most of the message outside the text that is copied to be read by serde_json.
+const REST_BYTES_AT_MOST: usize = 1 << 20;
+
 /// Reads `body` as a `didOpen` notification with the text unescaped in place (see the module).
 pub fn read_open_in_place(body: Vec<u8>) -> OpenRead {
     let body = if measured_without("literal-scan") {
@@ -108,6 +111,12 @@ fn read_with_text_found(body: Vec<u8>) -> Result<OpenRead, Vec<u8>> {
         let Some(end) = closing_quote(&body, open + 1) else {
             break;
         };
+        // The rest of the message is copied and read by serde_json: a literal with megabytes around
+        // it is not the text (clients put it among small fields), and is passed over without that.
+        if open + (body.len() - end) > REST_BYTES_AT_MOST {
+            from = end + 1;
+            continue;
+        }
         let mut rest = Vec::with_capacity(body.len() - (end - open) + 1);
         rest.extend_from_slice(&body[..open]);
         rest.extend_from_slice(b"\"\"");
@@ -332,6 +341,13 @@ mod tests {
             assert_eq!(in_place(body), Ok(program.clone()));
             assert_eq!(ordinary(body), Ok(program.clone()));
         }
+        // A decoy with megabytes after it is passed over without copying them.
+        let large = "N10 G1 X1 Y2 Z3\n".repeat(80_000);
+        let body = format!(
+            r#"{{"jsonrpc":"2.0","method":"textDocument/didOpen","params":{{"x":{{"text":"decoy"}},"textDocument":{{"uri":"file:///a.mpf","languageId":"sinumerik","version":3,"text":{}}}}}}}"#,
+            serde_json::to_string(&large).unwrap()
+        );
+        assert_eq!(in_place(body.as_bytes()), Ok(large));
         // Bytes that are not UTF-8, in the text or in a field nobody reads, make no JSON either way.
         let mut in_text = open_body(r#""N10 X1 and more to fill the words""#);
         let at = in_text.len() - 8;
