@@ -136,6 +136,7 @@ fn invalid(id: Id, problem: Problem, length: usize) -> Incoming {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use tower_lsp_server::ls_types::DidOpenTextDocumentParams;
 
     fn kind(body: &[u8]) -> &'static str {
         match read_message(body, &mut InitializeGate::default()) {
@@ -198,5 +199,93 @@ mod tests {
             read_message(good, &mut gate),
             Incoming::Invalid { .. }
         ));
+    }
+
+    /// A `didOpen` whose text is the JSON literal `text_literal`.
+    fn open_body(text_literal: &str) -> Vec<u8> {
+        format!(
+            r#"{{"jsonrpc":"2.0","method":"textDocument/didOpen","params":{{"textDocument":{{"uri":"file:///a.mpf","languageId":"sinumerik","version":3,"text":{text_literal}}}}}}}"#
+        )
+        .into_bytes()
+    }
+
+    /// What the ordinary path makes of `body`: the didOpen's text, or the kind of error.
+    fn ordinary(body: &[u8]) -> Result<String, i64> {
+        match read_message(body, &mut InitializeGate::default()) {
+            Incoming::Request(request) => {
+                let params: DidOpenTextDocumentParams =
+                    serde_json::from_value(request.params().cloned().unwrap_or_default())
+                        .map_err(|_| 0)?;
+                Ok(params.text_document.text)
+            }
+            Incoming::Invalid { response, .. } => Err(match response.into_parts().1 {
+                Err(error) => error.code.code(),
+                Ok(_) => 0,
+            }),
+            Incoming::Response(_) => Err(1),
+        }
+    }
+
+    /// What reading in place makes of `body`, in the ordinary path's terms.
+    fn in_place(body: &[u8]) -> Result<String, i64> {
+        match read_owned_message(body.to_vec(), &mut InitializeGate::default()) {
+            (Incoming::Request(request), _) => {
+                let params: DidOpenTextDocumentParams =
+                    serde_json::from_value(request.params().cloned().unwrap_or_default())
+                        .map_err(|_| 0)?;
+                Ok(params.text_document.text)
+            }
+            (Incoming::Invalid { response, .. }, _) => Err(match response.into_parts().1 {
+                Err(error) => error.code.code(),
+                Ok(_) => 0,
+            }),
+            _ => Err(1),
+        }
+    }
+
+    #[test]
+    fn a_didopen_text_found_by_its_key_reads_as_the_ordinary_path_reads_it() {
+        let program = "N10 G0 X1\nN20 \"text\":\"quoted\" Y2\r\n".repeat(3);
+        let literal = serde_json::to_string(&program).unwrap();
+        let bodies = [
+            // As clients send it, with spaces around the colon, and with the text first.
+            open_body(&literal).into_iter().collect::<Vec<u8>>(),
+            open_body(&literal)
+                .iter()
+                .map(|&byte| byte as char)
+                .collect::<String>()
+                .replace(r#""text":"#, "\"text\" :\n ")
+                .into_bytes(),
+            format!(
+                r#"{{"jsonrpc":"2.0","method":"textDocument/didOpen","params":{{"textDocument":{{"text":{literal},"uri":"file:///a.mpf","languageId":"sinumerik","version":3}}}}}}"#
+            )
+            .into_bytes(),
+            // Another "text" key first, in an object and in a string.
+            format!(
+                r#"{{"jsonrpc":"2.0","method":"textDocument/didOpen","params":{{"x":{{"text":"decoy"}},"y":"\"text\":\"","textDocument":{{"uri":"file:///a.mpf","languageId":"sinumerik","version":3,"text":{literal}}}}}}}"#
+            )
+            .into_bytes(),
+        ];
+        for body in &bodies {
+            assert_eq!(in_place(body), Ok(program.clone()));
+            assert_eq!(ordinary(body), Ok(program.clone()));
+        }
+        // A decoy with megabytes after it is passed over without copying them.
+        let large = "N10 G1 X1 Y2 Z3\n".repeat(80_000);
+        let body = format!(
+            r#"{{"jsonrpc":"2.0","method":"textDocument/didOpen","params":{{"x":{{"text":"decoy"}},"textDocument":{{"uri":"file:///a.mpf","languageId":"sinumerik","version":3,"text":{}}}}}}}"#,
+            serde_json::to_string(&large).unwrap()
+        );
+        assert_eq!(in_place(body.as_bytes()), Ok(large));
+        // Bytes that are not UTF-8, in the text or in a field nobody reads, make no JSON either way.
+        let mut in_text = open_body(r#""N10 X1 and more to fill the words""#);
+        let at = in_text.len() - 8;
+        in_text[at] = 0xff;
+        let mut in_field = open_body(r#""N10 X1""#);
+        in_field.splice(1..1, b"\"x\":\"\xfe\",".iter().copied());
+        for body in [in_text, in_field] {
+            assert_eq!(in_place(&body), ordinary(&body));
+            assert!(ordinary(&body).is_err());
+        }
     }
 }
