@@ -136,6 +136,7 @@ fn invalid(id: Id, problem: Problem, length: usize) -> Incoming {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::lsp::transport::open_in_place::tests::open_body;
     use tower_lsp_server::ls_types::DidOpenTextDocumentParams;
 
     fn kind(body: &[u8]) -> &'static str {
@@ -201,17 +202,9 @@ mod tests {
         ));
     }
 
-    /// A `didOpen` whose text is the JSON literal `text_literal`.
-    fn open_body(text_literal: &str) -> Vec<u8> {
-        format!(
-            r#"{{"jsonrpc":"2.0","method":"textDocument/didOpen","params":{{"textDocument":{{"uri":"file:///a.mpf","languageId":"sinumerik","version":3,"text":{text_literal}}}}}}}"#
-        )
-        .into_bytes()
-    }
-
-    /// What the ordinary path makes of `body`: the didOpen's text, or the kind of error.
-    fn ordinary(body: &[u8]) -> Result<String, i64> {
-        match read_message(body, &mut InitializeGate::default()) {
+    /// What a reading gave, in terms both paths share: the didOpen's text, or the error's code.
+    fn outcome(incoming: Incoming) -> Result<String, i64> {
+        match incoming {
             Incoming::Request(request) => {
                 let params: DidOpenTextDocumentParams =
                     serde_json::from_value(request.params().cloned().unwrap_or_default())
@@ -226,21 +219,14 @@ mod tests {
         }
     }
 
-    /// What reading in place makes of `body`, in the ordinary path's terms.
+    /// What the ordinary path makes of `body`.
+    fn ordinary(body: &[u8]) -> Result<String, i64> {
+        outcome(read_message(body, &mut InitializeGate::default()))
+    }
+
+    /// What reading in place makes of `body`.
     fn in_place(body: &[u8]) -> Result<String, i64> {
-        match read_owned_message(body.to_vec(), &mut InitializeGate::default()) {
-            (Incoming::Request(request), _) => {
-                let params: DidOpenTextDocumentParams =
-                    serde_json::from_value(request.params().cloned().unwrap_or_default())
-                        .map_err(|_| 0)?;
-                Ok(params.text_document.text)
-            }
-            (Incoming::Invalid { response, .. }, _) => Err(match response.into_parts().1 {
-                Err(error) => error.code.code(),
-                Ok(_) => 0,
-            }),
-            _ => Err(1),
-        }
+        outcome(read_owned_message(body.to_vec(), &mut InitializeGate::default()).0)
     }
 
     #[test]
@@ -249,11 +235,9 @@ mod tests {
         let literal = serde_json::to_string(&program).unwrap();
         let bodies = [
             // As clients send it, with spaces around the colon, and with the text first.
-            open_body(&literal).into_iter().collect::<Vec<u8>>(),
-            open_body(&literal)
-                .iter()
-                .map(|&byte| byte as char)
-                .collect::<String>()
+            open_body(&literal),
+            String::from_utf8(open_body(&literal))
+                .unwrap()
                 .replace(r#""text":"#, "\"text\" :\n ")
                 .into_bytes(),
             format!(

@@ -147,35 +147,19 @@ fn value_string_after(body: &[u8], index: usize) -> Option<usize> {
 }
 
 /// The fields of the `didOpen` that `rest` is, when its text is the empty string at `open`.
-fn fields_around_empty_text(rest: &[u8], open: usize) -> Option<(String, String, i32)> {
+fn fields_around_empty_text(rest: &[u8], open: usize) -> Option<OpenFields> {
     // The ordinary path refuses a body that is not UTF-8 anywhere, in fields it ignores too.
     std::str::from_utf8(rest).ok()?;
-    let message = serde_json::from_slice::<OpenMessage<'_>>(rest).ok()?;
-    if message.jsonrpc != "2.0" || message.method != DID_OPEN || message.id {
-        return None;
-    }
-    let item = message.params.text_document;
-    let literal = item.text.get().as_bytes();
+    let (fields, literal) = open_notification(rest)?;
     let at = (literal.as_ptr() as usize).checked_sub(rest.as_ptr() as usize);
-    (literal == b"\"\"" && at == Some(open)).then(|| {
-        (
-            item.uri.into_owned(),
-            item.language_id.into_owned(),
-            item.version,
-        )
-    })
+    (literal == b"\"\"" && at == Some(open)).then_some(fields)
 }
 
 /// serde_json checks the message with the text as its raw literal, found wherever it is.
 fn read_with_serde(body: Vec<u8>) -> OpenRead {
-    let Ok(message) = serde_json::from_slice::<OpenMessage<'_>>(&body) else {
+    let Some((fields, literal)) = open_notification(&body) else {
         return OpenRead::Other(body);
     };
-    if message.jsonrpc != "2.0" || message.method != DID_OPEN || message.id {
-        return OpenRead::Other(body);
-    }
-    let item = message.params.text_document;
-    let literal = item.text.get().as_bytes();
     // The literal lies inside the body (it is borrowed from it); its place is found from the two
     // addresses, without reading through them.
     let start = literal.as_ptr() as usize - body.as_ptr() as usize;
@@ -189,24 +173,33 @@ fn read_with_serde(body: Vec<u8>) -> OpenRead {
     if std::str::from_utf8(&body[..start]).is_err() || std::str::from_utf8(&body[end..]).is_err() {
         return OpenRead::Other(body);
     }
-    // The small fields are taken out before the body's bytes change under the borrowed message.
+    text_to_front(body, start + 1, end - 1, fields)
+}
+
+/// The small fields of a `didOpen` (uri, language id, version), owned: the body's bytes change
+/// after they are read.
+type OpenFields = (String, String, i32);
+
+/// The fields of `body` read as a `didOpen` notification, and its text's raw literal (borrowed from
+/// `body`); `None` for anything else, which the ordinary path reads.
+fn open_notification(body: &[u8]) -> Option<(OpenFields, &[u8])> {
+    let message = serde_json::from_slice::<OpenMessage<'_>>(body).ok()?;
+    if message.jsonrpc != "2.0" || message.method != DID_OPEN || message.id {
+        return None;
+    }
+    let item = message.params.text_document;
     let fields = (
         item.uri.into_owned(),
         item.language_id.into_owned(),
         item.version,
     );
-    text_to_front(body, start + 1, end - 1, fields)
+    Some((fields, item.text.get().as_bytes()))
 }
 
 /// The `didOpen` of `fields` and the text of the literal `body[start..end]` (between its quotes),
 /// unescaped to the front of the body; the message dropped as the ordinary path drops it when the
 /// literal is not JSON, not UTF-8, or holds half a surrogate pair.
-fn text_to_front(
-    mut body: Vec<u8>,
-    start: usize,
-    end: usize,
-    fields: (String, String, i32),
-) -> OpenRead {
+fn text_to_front(mut body: Vec<u8>, start: usize, end: usize, fields: OpenFields) -> OpenRead {
     let unescaped = match unescape_to_front(&mut body, start, end) {
         Ok(unescaped) => unescaped,
         Err(_) => return OpenRead::NotJson,
@@ -222,7 +215,7 @@ fn text_to_front(
 }
 
 /// The `didOpen` request of the fields and the text.
-fn request_from((uri, language_id, version): (String, String, i32), text: String) -> OpenRead {
+fn request_from((uri, language_id, version): OpenFields, text: String) -> OpenRead {
     // Built by hand: `json!` would serialize the text, a copy of it.
     let mut item = Map::new();
     item.insert("uri".into(), Value::String(uri));
@@ -236,11 +229,12 @@ fn request_from((uri, language_id, version): (String, String, i32), text: String
 }
 
 #[cfg(test)]
-mod tests {
+pub(super) mod tests {
     use super::*;
     use tower_lsp_server::ls_types::DidOpenTextDocumentParams;
 
-    fn open_body(text_literal: &str) -> Vec<u8> {
+    /// A `didOpen` whose text is the JSON literal `text_literal`.
+    pub(crate) fn open_body(text_literal: &str) -> Vec<u8> {
         format!(
             r#"{{"jsonrpc":"2.0","method":"textDocument/didOpen","params":{{"textDocument":{{"uri":"file:///a.mpf","languageId":"sinumerik","version":3,"text":{text_literal}}}}}}}"#
         )
