@@ -83,6 +83,20 @@ fn main() {
             lines_read += analysis.lines_read_by_last_update();
         }
         times.sort_by(f64::total_cmp);
+        // A hover's core: the report of a block on a random line (the state before it, resolved
+        // from the checkpoint before it, and its end point).
+        let mut reports = Vec::new();
+        while reports.len() < edit_count {
+            random ^= random << 13;
+            random ^= random >> 7;
+            random ^= random << 17;
+            let index = (random as usize) % lines.0.len();
+            let started = Instant::now();
+            let report = analysis.block_report(&lines, index);
+            reports.push(started.elapsed().as_secs_f64() * 1e3);
+            assert_eq!(report.line, index);
+        }
+        reports.sort_by(f64::total_cmp);
         println!(
             "{style:>6}: open {open:7.1} ms ({} findings); edit median {:6.2} ms, p99 {:6.2} ms, max {:6.2} ms; {:.0} lines re-read per edit",
             analysis.diagnostics().len(),
@@ -90,6 +104,11 @@ fn main() {
             percentile(&times, 0.99),
             times[times.len() - 1],
             lines_read as f64 / times.len() as f64,
+        );
+        println!(
+            "{style:>6}: block report (a hover's core) median {:6.3} ms, p99 {:6.3} ms",
+            percentile(&reports, 0.5),
+            percentile(&reports, 0.99),
         );
     }
 }

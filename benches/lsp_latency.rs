@@ -17,7 +17,8 @@
 //! server is measured on fewer samples, and the count is printed) change the run. `BENCH_STYLES`
 //! (default `cam3d,inc,noisy`) and `BENCH_SETUPS` (default 3: all setups; 1: the first only, 2: the
 //! first two) narrow it. `BENCH_PROGRAM_DIR` keeps the generated programs there and reuses them.
-//! `BENCH_SHOW_SLOW` prints every edit that took over 12 ms, with when it was sent.
+//! `BENCH_SHOW_SLOW` prints every edit that took over 12 ms and every hover over 1 ms, with when it was
+//! sent.
 //!
 //! Side by side: `BENCH_VARIANTS` lists servers separated by `;`, each `name`, optionally
 //! `@/path/to/binary` (default: this build's binary) and `:KEY=VALUE` environment settings (for
@@ -603,6 +604,15 @@ fn run(style: &str, line_count: usize, setup: &Setup, variant: &Variant) -> Opti
         };
         let (sent, id) = server.request("textDocument/hover", json!({"textDocument": {"uri": uri}, "position": {"line": line_idx, "character": column}}));
         let arrival = server.wait_for(|message| message["id"] == id);
+        // `BENCH_SHOW_SLOW` also prints each hover over 1 ms, to see whether slow ones come in runs.
+        if show_slow && (arrival.at - sent) > Duration::from_millis(1) {
+            println!(
+                "    slow hover #{} on line {line_idx} at +{:.3} s: {}",
+                hovers.len(),
+                (sent - hover_started).as_secs_f64(),
+                milliseconds(arrival.at - sent)
+            );
+        }
         hovers.push(arrival.at - sent);
     }
     summary("hover on an axis word", &mut hovers);

@@ -3,7 +3,7 @@
 //! of its document (`on_analysis`: the revision it was asked about, or "content modified").
 
 use crate::lsp::convert::PositionEncoding;
-use crate::lsp::documents::{Analysed, Documents, WorkerContext};
+use crate::lsp::documents::{Analysed, Documents, OpenDocument, WorkerContext};
 use crate::lsp::locks::lock;
 use crate::lsp::settings::{machine_config_for, Settings};
 use crate::lsp::transport::outbox::{Outgoing, OutgoingSender};
@@ -178,6 +178,8 @@ impl Shared {
     }
 
     /// The run (for a request at `Some(line)` that may show it) or the run and the times (`None`).
+    /// One job of the blocking pool makes them and then answers: each hand-over between threads
+    /// costs a hover tens of microseconds.
     pub(crate) async fn on_analysis_after<T: Send + 'static>(
         &self,
         uri: &Uri,
@@ -185,31 +187,30 @@ impl Shared {
         line: Option<usize>,
         job: impl FnOnce(&Analysed) -> T + Send + 'static,
     ) -> Result<T> {
-        if let Some(document) = self.documents.get(uri) {
-            let revision = document.revision();
-            let _ = tokio::task::spawn_blocking(move || {
-                let run = {
-                    let slot = document.catch_up();
-                    slot.as_ref()
-                        .filter(|analysed| {
-                            analysed.revision == revision
-                                && line.is_none_or(|line| analysed.may_show_run(line))
-                        })
-                        .map(|analysed| analysed.execution_job())
-                };
-                match (run, line) {
-                    (Some(run), Some(_)) => {
-                        run.run(library.as_ref());
-                    }
-                    (Some(run), None) => {
-                        run.times(library.as_ref());
-                    }
-                    (None, _) => {}
+        self.in_blocking_pool(uri, move |document, revision| {
+            let run = {
+                let slot = document.catch_up();
+                slot.as_ref()
+                    .filter(|analysed| {
+                        analysed.revision == revision
+                            && line.is_none_or(|line| analysed.may_show_run(line))
+                    })
+                    .map(|analysed| analysed.execution_job())
+            };
+            // The analysis is let go while the run is made, so that edits meanwhile are analysed. A
+            // run that panicked is not made here again: the job meets that when it asks for the run.
+            let _ = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| match (run, line) {
+                (Some(run), Some(_)) => {
+                    run.run(library.as_ref());
                 }
-            })
-            .await;
-        }
-        self.on_analysis(uri, job).await
+                (Some(run), None) => {
+                    run.times(library.as_ref());
+                }
+                (None, _) => {}
+            }));
+            answer_on(document, revision, job)
+        })
+        .await
     }
 
     /// The open document, the revision it had when the request came, and a job that answers the
@@ -219,16 +220,22 @@ impl Shared {
         uri: &Uri,
         job: impl FnOnce(&Analysed) -> T + Send + 'static,
     ) -> Result<T> {
+        self.in_blocking_pool(uri, move |document, revision| {
+            answer_on(document, revision, job)
+        })
+        .await
+    }
+
+    /// `work` on the open document and the revision it had when the request came, in the blocking
+    /// pool.
+    async fn in_blocking_pool<T: Send + 'static>(
+        &self,
+        uri: &Uri,
+        work: impl FnOnce(Arc<OpenDocument>, u64) -> Result<T> + Send + 'static,
+    ) -> Result<T> {
         let document = self.documents.get(uri).ok_or_else(|| not_open(uri))?;
         let revision = document.revision();
-        let answer = tokio::task::spawn_blocking(move || {
-            let slot = document.catch_up();
-            match slot.as_ref() {
-                Some(analysed) if analysed.revision == revision => Ok(job(analysed)),
-                _ => Err(content_modified()),
-            }
-        })
-        .await;
+        let answer = tokio::task::spawn_blocking(move || work(document, revision)).await;
         match answer {
             Ok(result) => result,
             Err(join_error) => {
@@ -242,5 +249,19 @@ impl Shared {
     /// Whether the client shows `$/progress` for a token the server creates.
     pub(crate) fn work_done_progress(&self) -> bool {
         lock(&self.info).work_done_progress
+    }
+}
+
+/// `job` on the analysis of `document` brought up to date, when it is still of `revision`; the
+/// content-modified error when an edit came since.
+fn answer_on<T>(
+    document: Arc<OpenDocument>,
+    revision: u64,
+    job: impl FnOnce(&Analysed) -> T,
+) -> Result<T> {
+    let slot = document.catch_up();
+    match slot.as_ref() {
+        Some(analysed) if analysed.revision == revision => Ok(job(analysed)),
+        _ => Err(content_modified()),
     }
 }

@@ -11,10 +11,12 @@ use crate::analysis::document::incremental::MovedLines;
 use crate::analysis::document::line_source::LineSource;
 use crate::analysis::document::pass::{PassLimits, PositionReads};
 use crate::analysis::engine::engine_state::Engine;
+use crate::analysis::engine::snapshot::EngineSnapshot;
 use crate::analysis::position_reads::READS_ALL;
 use crate::analysis::program_kind::ProgramKind;
 use crate::syntax::structure::StructureChecker;
 use crate::syntax::{Block, LineParser, SyntaxContext};
+use std::sync::Arc;
 
 impl DocumentAnalysis {
     /// Analyses the whole document again.
@@ -84,7 +86,7 @@ impl DocumentAnalysis {
         }
         Checkpoint {
             line: 0,
-            engine: engine.snapshot(),
+            engine: Arc::new(engine.snapshot()),
             structure: StructureChecker::default(),
         }
     }
@@ -178,7 +180,7 @@ impl DocumentAnalysis {
         self.body.extend(second.diagnostics);
         self.tail = second.tail;
         let guessed_right = end_of_first.structure == guess.structure
-            && Engine::from_snapshot(&self.config, end_of_first.engine.clone())
+            && Engine::from_snapshot(&self.config, EngineSnapshot::clone(&end_of_first.engine))
                 .matches(&guess.engine);
         if guessed_right {
             self.checkpoints.extend(second.checkpoints);
@@ -211,7 +213,7 @@ impl DocumentAnalysis {
         start: &Checkpoint,
         middle: usize,
     ) -> Checkpoint {
-        let mut engine = Engine::from_snapshot(&self.config, start.engine.clone());
+        let mut engine = Engine::from_snapshot(&self.config, EngineSnapshot::clone(&start.engine));
         let mut structure = start.structure.clone();
         let mut parser = LineParser::new();
         let mut block = Block::default();
@@ -234,7 +236,7 @@ impl DocumentAnalysis {
         }
         Checkpoint {
             line: middle,
-            engine: engine.snapshot(),
+            engine: Arc::new(engine.snapshot()),
             structure,
         }
     }

@@ -7,12 +7,14 @@ use crate::analysis::document::document_state::{
 };
 use crate::analysis::document::line_source::LineSource;
 use crate::analysis::engine::engine_state::Engine;
+use crate::analysis::engine::snapshot::EngineSnapshot;
 use crate::analysis::position_reads::{
     position_reads as position_reads_of, shifted_axes, READS_ALL,
 };
 use crate::diagnostics::{Diagnostic, LineDiagnostic};
 use crate::syntax::{Block, LineParser};
 use std::ops::Range;
+use std::sync::Arc;
 
 /// What one forward pass found.
 pub(super) struct Pass {
@@ -91,7 +93,7 @@ impl DocumentAnalysis {
         limits: PassLimits<'_>,
     ) -> Pass {
         let line_count = source.line_count();
-        let mut engine = Engine::from_snapshot(&self.config, start.engine);
+        let mut engine = Engine::from_snapshot(&self.config, Arc::unwrap_or_clone(start.engine));
         let mut structure = start.structure;
         let mut parser = LineParser::new();
         let mut block = Block::default();
@@ -133,7 +135,7 @@ impl DocumentAnalysis {
                     if index >= limits.stop_at {
                         pass.stopped = Some(Checkpoint {
                             line: index,
-                            engine: engine.snapshot(),
+                            engine: Arc::new(engine.snapshot()),
                             structure: structure.clone(),
                         });
                         return false;
@@ -147,7 +149,7 @@ impl DocumentAnalysis {
                         last_checkpoint = index;
                         pass.checkpoints.push(Checkpoint {
                             line: index,
-                            engine: engine.snapshot(),
+                            engine: Arc::new(engine.snapshot()),
                             structure: structure.clone(),
                         });
                         if pass.lines_read >= INTERRUPTIBLE_AFTER_LINES && (limits.interrupted)() {
@@ -191,7 +193,7 @@ impl DocumentAnalysis {
             let here = old_checkpoints[next_old].line;
             pass.checkpoints.push(Checkpoint {
                 line: here,
-                engine: engine.snapshot(),
+                engine: Arc::new(engine.snapshot()),
                 structure: structure.clone(),
             });
             last_checkpoint = here;
@@ -211,7 +213,7 @@ impl DocumentAnalysis {
                     pass.converged_at = Some(line_count);
                     break;
                 }
-                old_checkpoints[current].engine.shift_positions(&shift);
+                Arc::make_mut(&mut old_checkpoints[current].engine).shift_positions(&shift);
                 let checkpoint = old_checkpoints[current].clone();
                 last_checkpoint = checkpoint.line;
                 pass.checkpoints.push(checkpoint);
@@ -221,7 +223,8 @@ impl DocumentAnalysis {
             }
             if current > next_old {
                 let checkpoint = &old_checkpoints[current];
-                engine = Engine::from_snapshot(&self.config, checkpoint.engine.clone());
+                engine =
+                    Engine::from_snapshot(&self.config, EngineSnapshot::clone(&checkpoint.engine));
                 structure = checkpoint.structure.clone();
                 // The checkpoint at `current` was pushed above; the old ones before it are replaced.
                 next_old = current + 1;

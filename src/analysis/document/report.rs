@@ -6,6 +6,7 @@ use crate::analysis::document::document_state::DocumentAnalysis;
 use crate::analysis::document::line_source::LineSource;
 use crate::analysis::engine::engine_state::Engine;
 use crate::analysis::engine::moves::Move;
+use crate::analysis::engine::snapshot::EngineSnapshot;
 use crate::analysis::resolution::WordResolution;
 use crate::analysis::state::{ModalState, Pole};
 use crate::config::MachineConfig;
@@ -89,7 +90,8 @@ impl DocumentAnalysis {
             return;
         }
         let checkpoint = self.checkpoint_before(lines.start);
-        let mut engine = Engine::from_snapshot(&self.config, checkpoint.engine.clone());
+        let mut engine =
+            Engine::from_snapshot(&self.config, EngineSnapshot::clone(&checkpoint.engine));
         let mut parser = LineParser::new();
         let mut block = Block::default();
         let mut findings = Vec::new();
@@ -107,11 +109,31 @@ impl DocumentAnalysis {
         });
     }
 
+    /// Whether flow is uncertain before or after the block on `line` (`before.flow_uncertain ||
+    /// after.flow_uncertain` of its [`Self::block_report`]), when the checkpoints tell it without
+    /// replaying blocks: once a label, jump or structure has been passed, flow stays uncertain to the
+    /// end, so the checkpoint before the line tells when it is uncertain there and the checkpoint
+    /// after the line when it is certain through the block. `None` when neither tells (the line is in
+    /// the last interval and flow is certain before it).
+    pub fn flow_uncertain_by_checkpoints(&self, line: usize) -> Option<bool> {
+        if self.checkpoint_before(line).engine.flow_uncertain() {
+            return Some(true);
+        }
+        let after = self
+            .checkpoints
+            .partition_point(|checkpoint| checkpoint.line <= line);
+        self.checkpoints
+            .get(after)
+            .filter(|checkpoint| !checkpoint.engine.flow_uncertain())
+            .map(|_| false)
+    }
+
     /// The state before and after the block on `line`, its move and how its axis words resolve. A
     /// line past the end reports the state at the end of the program.
     pub fn block_report(&self, source: &dyn LineSource, line: usize) -> BlockReport {
         let checkpoint = self.checkpoint_before(line);
-        let mut engine = Engine::from_snapshot(&self.config, checkpoint.engine.clone());
+        let mut engine =
+            Engine::from_snapshot(&self.config, EngineSnapshot::clone(&checkpoint.engine));
         let mut parser = LineParser::new();
         let mut block = Block::default();
         let mut findings = Vec::new();

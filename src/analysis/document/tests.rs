@@ -85,3 +85,58 @@ fn an_update_sees_the_new_text() {
     assert_eq!(analysis.diagnostics().len(), 1);
     assert_eq!(analysis.diagnostics()[0].line, 1);
 }
+
+/// Whether the block reports say that flow is uncertain at `line`.
+fn flow_uncertain_replayed(analysis: &DocumentAnalysis, source: &TextLines, line: usize) -> bool {
+    let report = analysis.block_report(source, line);
+    report.before.flow_uncertain || report.after.flow_uncertain
+}
+
+#[test]
+fn the_checkpoints_tell_flow_uncertainty_as_the_block_reports_do() {
+    let config = Arc::new(MachineConfig::mill());
+    let interval = crate::analysis::document::document_state::CHECKPOINT_INTERVAL;
+    // Straight-line blocks with a label in the fourth interval; then with a jump added in the
+    // second interval by an edit, and removed again.
+    let blocks = |jump_at: Option<usize>| -> String {
+        (0..6 * interval)
+            .map(|line| match line {
+                _ if line == 3 * interval + 7 => "MARK1:\n".to_string(),
+                _ if Some(line) == jump_at => "GOTOF MARK1\n".to_string(),
+                _ => format!("N{line} G1 X{} Y1 F100\n", line % 50),
+            })
+            .collect()
+    };
+    let text = blocks(None);
+    let mut analysis = DocumentAnalysis::new(
+        &TextLines::new(&text),
+        Arc::clone(&config),
+        ProgramKind::Main,
+    );
+    let edited = blocks(Some(interval + 3));
+    let checks: [(&str, Option<usize>); 3] = [
+        (&text, None),
+        (&edited, Some(interval + 3)),
+        (&text, Some(interval + 3)),
+    ];
+    for (text, changed) in checks {
+        let source = TextLines::new(text);
+        if let Some(line) = changed {
+            analysis.update(&source, line, 1, 1);
+        }
+        let mut told = 0;
+        let mut uncertain = 0;
+        for line in 0..6 * interval {
+            let replayed = flow_uncertain_replayed(&analysis, &source, line);
+            uncertain += usize::from(replayed);
+            if let Some(by_checkpoints) = analysis.flow_uncertain_by_checkpoints(line) {
+                told += 1;
+                assert_eq!(by_checkpoints, replayed, "line {line} after {changed:?}");
+            }
+        }
+        assert!(uncertain > 0 && uncertain < 6 * interval);
+        // Only the interval where flow becomes uncertain needs the replay (and the last one when
+        // flow is certain before it, not the case here).
+        assert_eq!(told, 5 * interval, "after {changed:?}");
+    }
+}

@@ -29,6 +29,11 @@ pub struct PositionShift {
 }
 
 impl EngineSnapshot {
+    /// Whether a label, jump or control structure had been passed when the snapshot was taken.
+    pub fn flow_uncertain(&self) -> bool {
+        self.flow_uncertain
+    }
+
     /// Moves every known position by `shift`.
     pub fn shift_positions(&mut self, shift: &PositionShift) {
         add_to_known(&mut self.state.positions, &shift.positions);

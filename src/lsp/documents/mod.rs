@@ -105,8 +105,14 @@ impl Analysed {
         if line >= self.rope.len_lines() {
             return false;
         }
-        let report = self.analysis.block_report(&self.lines(), line);
-        report.before.flow_uncertain || report.after.flow_uncertain
+        // The checkpoints tell it for all but the last interval; replaying the block to know would
+        // double the cost of a hover, which replays it anyway.
+        self.analysis
+            .flow_uncertain_by_checkpoints(line)
+            .unwrap_or_else(|| {
+                let report = self.analysis.block_report(&self.lines(), line);
+                report.before.flow_uncertain || report.after.flow_uncertain
+            })
     }
 
     /// The machining times of this revision if a request already made them (the status bar's, the
