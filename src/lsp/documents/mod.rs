@@ -342,6 +342,15 @@ impl OpenDocument {
         tokio::task::spawn_blocking(move || document.run_worker(&context));
     }
 
+    /// The analysis, locked, when it is of `revision` and nobody holds it: a request answered on it
+    /// right away needs neither to wait nor to move to another thread.
+    pub fn try_current(&self, revision: u64) -> Option<MutexGuard<'_, Option<Analysed>>> {
+        let slot = self.analysis.try_lock().ok()?;
+        slot.as_ref()
+            .is_some_and(|analysed| analysed.revision == revision)
+            .then_some(slot)
+    }
+
     /// Brings the analysis up to date with the newest text and returns it, locked. Waits for a
     /// worker that is analysing, and may itself do the work a worker would have done.
     pub fn catch_up(&self) -> MutexGuard<'_, Option<Analysed>> {
