@@ -4,7 +4,8 @@
 //! change, so the pass stops at the next checkpoint), and a changed digit of a coordinate in the
 //! incremental `inc` program (every later position moves, so the pass runs to the end).
 //!
-//! Run with `cargo bench --bench document_edit` (`BENCH_LINES`, `BENCH_EDITS` change the sizes).
+//! Run with `cargo bench --bench document_edit` (`BENCH_LINES`, `BENCH_EDITS` change the sizes;
+//! `BENCH_STYLES=cam3d,inc,noisy` picks the programs, `noisy` edited as `cam3d`).
 
 use sinumerik_lsp::analysis::document::{DocumentAnalysis, LineSource};
 use sinumerik_lsp::analysis::ProgramKind;
@@ -43,7 +44,8 @@ fn main() {
         .and_then(|value| value.parse().ok())
         .unwrap_or(200);
     println!("document analysis, one core, {line_count} lines, {edit_count} edits per kind");
-    for style in ["cam3d", "inc"] {
+    let styles = std::env::var("BENCH_STYLES").unwrap_or_else(|_| "cam3d,inc".to_string());
+    for style in styles.split(',') {
         let Some(text) = generated::generate(style, line_count) else {
             println!("{style}: skipped (../shared/bench/gen_program.py or python3 not available)");
             continue;
@@ -62,7 +64,7 @@ fn main() {
             random ^= random << 17;
             let index = 10 + (random as usize) % (lines.0.len() - 20);
             let line = &mut lines.0[index];
-            if style == "cam3d" {
+            if style != "inc" {
                 line.insert(0, ' ');
             } else {
                 // A digit of the first coordinate of a plain incremental block.

@@ -16,20 +16,23 @@ use std::sync::Arc;
 /// Lines between two checkpoints of the modal state. A hover replays at most this many blocks, and an
 /// edit whose effect ends reads on to the next checkpoint; memory is one modal state per interval.
 /// Against 512, 256 halves the instructions of a hover's block report and takes a third off those of
-/// an edit, for 0.2 % more in the first analysis (`docs/performance.md`, "fourth pass").
+/// an edit, for 0.05 % more in the first analysis (`docs/performance.md`, "fourth pass").
 pub const CHECKPOINT_INTERVAL: usize = 256;
 
-/// A document is analysed on two threads when each half has at least this many lines: below, the
-/// second thread's start costs more than it saves.
-pub(super) const PARALLEL_HALF_MIN_LINES: usize = 16 * CHECKPOINT_INTERVAL;
-/// The blocks read for the guess of the state in the middle of a document: from its start, and
-/// before the middle.
-pub(super) const GUESS_HEAD_LINES: usize = 2 * CHECKPOINT_INTERVAL;
-pub(super) const GUESS_TAIL_LINES: usize = 2 * CHECKPOINT_INTERVAL;
+// The sizes below are those of when checkpoints were every 512 lines: the interval was halved for
+// hovers and edits, not to change how a document is first read or when an update may stop.
 
-/// An update may be interrupted once it has read this many lines: shorter ones finish within
+/// A document is analysed on two threads when each half has at least this many lines (8,192): below,
+/// the second thread's start costs more than it saves.
+pub(super) const PARALLEL_HALF_MIN_LINES: usize = 32 * CHECKPOINT_INTERVAL;
+/// The blocks read for the guess of the state in the middle of a document: from its start, and
+/// before the middle (1,024 each).
+pub(super) const GUESS_HEAD_LINES: usize = 4 * CHECKPOINT_INTERVAL;
+pub(super) const GUESS_TAIL_LINES: usize = 4 * CHECKPOINT_INTERVAL;
+
+/// An update may be interrupted once it has read this many lines (32,768): shorter ones finish within
 /// milliseconds, and stopping them would only add work.
-pub const INTERRUPTIBLE_AFTER_LINES: usize = 64 * CHECKPOINT_INTERVAL;
+pub const INTERRUPTIBLE_AFTER_LINES: usize = 128 * CHECKPOINT_INTERVAL;
 
 /// The state before one line: where the analysis can start again.
 #[derive(Debug, Clone)]
