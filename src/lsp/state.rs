@@ -173,7 +173,13 @@ impl Shared {
                     .as_ref()
                     .filter(|analysed| !analysed.may_show_run(line))
                 {
-                    return Ok(job(analysed));
+                    // A panic must not reach the service's task: it fails this request only, as
+                    // one in the blocking pool does.
+                    return caught(|| job(analysed)).map_err(|message| {
+                        self.outgoing
+                            .log_error(format!("a request failed: {message}"));
+                        Error::internal_error()
+                    });
                 }
             }
         }
@@ -277,5 +283,39 @@ fn answer_on<T>(
     match slot.as_ref() {
         Some(analysed) if analysed.revision == revision => Ok(job(analysed)),
         _ => Err(content_modified()),
+    }
+}
+
+/// What `work` returns, or the message of its panic, caught.
+fn caught<T>(work: impl FnOnce() -> T) -> std::result::Result<T, String> {
+    std::panic::catch_unwind(std::panic::AssertUnwindSafe(work)).map_err(|payload| {
+        payload
+            .downcast_ref::<&str>()
+            .map(|text| text.to_string())
+            .or_else(|| payload.downcast_ref::<String>().cloned())
+            .unwrap_or_else(|| "a panic without a message".to_string())
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::caught;
+
+    #[test]
+    fn a_panic_is_caught_with_its_message() {
+        assert_eq!(caught(|| 7), Ok(7));
+        assert_eq!(
+            caught(|| -> u8 { panic!("a static text") }),
+            Err("a static text".to_string())
+        );
+        let number = 12;
+        assert_eq!(
+            caught(|| -> u8 { panic!("a formatted text {number}") }),
+            Err("a formatted text 12".to_string())
+        );
+        assert_eq!(
+            caught(|| -> u8 { std::panic::panic_any(3_u32) }),
+            Err("a panic without a message".to_string())
+        );
     }
 }
