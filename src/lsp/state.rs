@@ -175,11 +175,8 @@ impl Shared {
                 {
                     // A panic must not reach the service's task: it fails this request only, as
                     // one in the blocking pool does.
-                    return caught(|| job(analysed)).map_err(|message| {
-                        self.outgoing
-                            .log_error(format!("a request failed: {message}"));
-                        Error::internal_error()
-                    });
+                    return caught(|| job(analysed))
+                        .map_err(|message| self.request_failed(message));
                 }
             }
         }
@@ -219,7 +216,7 @@ impl Shared {
             };
             // The analysis is let go while the run is made, so that edits meanwhile are analysed. A
             // run that panicked is not made here again: the job meets that when it asks for the run.
-            let _ = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| match (run, line) {
+            let _ = caught(|| match (run, line) {
                 (Some(run), Some(_)) => {
                     run.run(library.as_ref());
                 }
@@ -227,7 +224,7 @@ impl Shared {
                     run.times(library.as_ref());
                 }
                 (None, _) => {}
-            }));
+            });
             answer_on(document, revision, job)
         })
         .await
@@ -256,14 +253,14 @@ impl Shared {
         let document = self.documents.get(uri).ok_or_else(|| not_open(uri))?;
         let revision = document.revision();
         let answer = tokio::task::spawn_blocking(move || work(document, revision)).await;
-        match answer {
-            Ok(result) => result,
-            Err(join_error) => {
-                self.outgoing
-                    .log_error(format!("a request failed: {join_error}"));
-                Err(Error::internal_error())
-            }
-        }
+        answer.unwrap_or_else(|join_error| Err(self.request_failed(join_error)))
+    }
+
+    /// The answer to a request whose work panicked, which is logged: the request fails, the server
+    /// goes on.
+    fn request_failed(&self, why: impl std::fmt::Display) -> Error {
+        self.outgoing.log_error(format!("a request failed: {why}"));
+        Error::internal_error()
     }
 
     /// Whether the client shows `$/progress` for a token the server creates.

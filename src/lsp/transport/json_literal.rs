@@ -114,9 +114,9 @@ fn hex4(digits: Option<&[u8]>) -> Result<u32, StringProblem> {
 /// and returns the text's length and whether it had half a surrogate pair (written as U+FFFD: no
 /// string can hold the half; the caller drops the message). Every escape is at least as long as
 /// what it stands for, so the writing never overtakes the reading; what follows the text may be
-/// overwritten. Bytes that are not UTF-8
-/// are left for the caller to find in the text, which is UTF-8 exactly when the literal is (escapes
-/// give whole characters, and stand between characters): the text is made into a string anyway.
+/// overwritten. Bytes that are not UTF-8 are left for the caller to find in the text, which is UTF-8
+/// exactly when the literal is (escapes give whole characters, and stand between characters): the
+/// text is made into a string anyway.
 pub fn unescape_to_front(
     bytes: &mut [u8],
     start: usize,
