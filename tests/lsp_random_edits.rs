@@ -8,10 +8,11 @@ mod lsp_client;
 
 use lsp_client::{apply_edit, lsp_line_count, lsp_line_length, Random, TestClient};
 use serde_json::{json, Value};
+use sinumerik_lsp::analysis::document::RopeLines;
 use sinumerik_lsp::analysis::document::{DocumentAnalysis, LineSource, TextLines};
 use sinumerik_lsp::analysis::ProgramKind;
 use sinumerik_lsp::config::MachineConfig;
-use sinumerik_lsp::lsp::{apply_changes, DocumentText, PositionEncoding, RopeLines};
+use sinumerik_lsp::lsp::{apply_changes, DocumentText, PositionEncoding};
 use std::sync::Arc;
 use tower_lsp_server::ls_types::{Position, Range, TextDocumentContentChangeEvent};
 

@@ -22,14 +22,18 @@
 pub(crate) mod document_state;
 pub(crate) mod facts;
 mod first_analysis;
+mod flat_lines;
 mod incremental;
 pub(crate) mod line_source;
 mod pass;
 pub(crate) mod report;
+mod rope_lines;
 #[cfg(test)]
 mod tests;
 
 pub use crate::analysis::resolution::{ResolutionMode, WordResolution};
 pub use document_state::{DocumentAnalysis, CHECKPOINT_INTERVAL, INTERRUPTIBLE_AFTER_LINES};
+pub use flat_lines::FlatLines;
 pub use line_source::{LineSource, TextLines};
 pub use report::{summarize, BlockReport, StateSummary};
+pub use rope_lines::{core_line_count, RopeLines};

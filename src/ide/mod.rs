@@ -22,6 +22,7 @@
 
 pub mod block_numbers;
 pub mod block_words;
+pub mod call_lookup;
 mod comment_sections;
 pub mod completion;
 pub mod cross_file_diagnostics;

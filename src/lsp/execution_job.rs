@@ -1,11 +1,11 @@
 //! The run of one revision of an open document and its machining times, made once per revision and
 //! library generation and kept; the job holds a snapshot so that the run does not hold the analysis.
 
+use crate::analysis::document::RopeLines;
 use crate::analysis::library::ProgramLibrary;
 use crate::config::MachineConfig;
 use crate::ide::execution::{execute_document, DocumentExecution};
 use crate::lsp::locks::lock;
-use crate::lsp::text_document::RopeLines;
 use ropey::Rope;
 use std::sync::{Arc, Mutex};
 
@@ -27,59 +27,59 @@ impl ExecutionJob {
     /// The run of the job's revision: the cached one, or made now (resuming the previous revision's
     /// run where the edit allows it). Runs asked for at once wait for one another.
     pub fn run(&self, library: &dyn ProgramLibrary) -> Arc<DocumentExecution> {
-        let mut cached = lock(&self.cache);
         // Another file's change (a callee, a caller, a macro file) advances the library's generation:
         // the run is made again for it.
-        let generation = library.generation();
-        if let Some((revision, run_generation, execution)) = cached.as_ref() {
-            if *revision == self.revision && *run_generation == generation {
-                return Arc::clone(execution);
-            }
-        }
-        // The run of an earlier revision is resumed where the edit allows it (`execution/recorded.rs`).
-        let earlier = cached
-            .as_ref()
-            .map(|(_, _, execution)| Arc::clone(execution));
-        let execution = Arc::new(execute_document(
-            &RopeLines::new(&self.rope),
-            &self.config,
-            self.kind,
-            library,
-            &self.config.execution,
-            earlier.as_deref(),
-        ));
-        // A newer revision's run may have been stored meanwhile: it stays.
-        let newer = cached
-            .as_ref()
-            .is_some_and(|(revision, _, _)| *revision > self.revision);
-        if !newer {
-            *cached = Some((self.revision, generation, Arc::clone(&execution)));
-        }
-        execution
+        self.kept(&self.cache, library.generation(), |earlier| {
+            // The run of an earlier revision is resumed where the edit allows it
+            // (`execution/recorded.rs`).
+            execute_document(
+                &RopeLines::new(&self.rope),
+                &self.config,
+                self.kind,
+                library,
+                &self.config.execution,
+                earlier,
+            )
+        })
     }
 
     /// The machining times of the job's revision: the cached ones, or made now from its run.
     pub fn times(&self, library: &dyn ProgramLibrary) -> Arc<crate::ide::timing::DocumentTimes> {
         let execution = self.run(library);
-        let generation = library.generation();
-        let mut cached = lock(&self.times);
-        if let Some((revision, run_generation, times)) = cached.as_ref() {
-            if *revision == self.revision && *run_generation == generation {
-                return Arc::clone(times);
+        self.kept(&self.times, library.generation(), |_| {
+            crate::ide::timing::DocumentTimes::new(
+                &RopeLines::new(&self.rope),
+                &execution,
+                &self.config,
+                self.kind,
+            )
+        })
+    }
+
+    /// The value `cache` keeps for the job's revision and the library's `generation`, or the one
+    /// `make` makes now (given the cached value of another revision or generation), kept unless a
+    /// newer revision's value was stored meanwhile. The cache stays locked while `make` works, so
+    /// that requests asked at once wait for one value.
+    fn kept<T>(
+        &self,
+        cache: &Mutex<Option<(u64, u64, Arc<T>)>>,
+        generation: u64,
+        make: impl FnOnce(Option<&T>) -> T,
+    ) -> Arc<T> {
+        let mut cached = lock(cache);
+        if let Some((revision, made_for, value)) = cached.as_ref() {
+            if *revision == self.revision && *made_for == generation {
+                return Arc::clone(value);
             }
         }
-        let times = Arc::new(crate::ide::timing::DocumentTimes::new(
-            &RopeLines::new(&self.rope),
-            &execution,
-            &self.config,
-            self.kind,
-        ));
+        let earlier = cached.as_ref().map(|(_, _, value)| Arc::clone(value));
+        let value = Arc::new(make(earlier.as_deref()));
         let newer = cached
             .as_ref()
             .is_some_and(|(revision, _, _)| *revision > self.revision);
         if !newer {
-            *cached = Some((self.revision, generation, Arc::clone(&times)));
+            *cached = Some((self.revision, generation, Arc::clone(&value)));
         }
-        times
+        value
     }
 }

@@ -43,7 +43,7 @@ pub use ext::{EndpointPreviewParams, ENDPOINT_PREVIEW_COMMAND};
 pub use handlers::rewrite_commands::{FORMAT_COMMAND, RENUMBER_COMMAND};
 // For the fuzzer (examples/fuzz): the framing parser and the encoding of diagnostics.
 pub use publish::{publication as publication_body, ranges as diagnostic_ranges, Publisher};
-pub use text_document::{apply_changes, DocumentText, LineChange, RopeLineChange, RopeLines};
+pub use text_document::{apply_changes, DocumentText, LineChange, RopeLineChange};
 pub use transport::framing::{Frame, Framer};
 pub use transport::message::{read_message, read_owned_message, Incoming, InitializeGate};
 

@@ -3,10 +3,11 @@
 //! so that is what keeps edits in order); requests run their feature on the analysis in the blocking
 //! pool and answer "content modified" when the document changed meanwhile.
 
+use crate::analysis::library::ProgramLibrary;
 use crate::lsp::capabilities::{client_info, server_capabilities};
 use crate::lsp::configuration::{apply_settings, request_configuration, watch_files};
 use crate::lsp::convert::PositionEncoding;
-use crate::lsp::documents::{Documents, OpenDocument};
+use crate::lsp::documents::{Analysed, Documents, OpenDocument};
 use crate::lsp::ext::{DocumentTextParams, DocumentTextResult, ModalStateParams, ModalStateResult};
 use crate::lsp::handlers::code_action::code_actions;
 use crate::lsp::handlers::config_fixes;
@@ -14,15 +15,16 @@ use crate::lsp::handlers::endpoint_preview;
 use crate::lsp::handlers::hover::hover;
 use crate::lsp::handlers::inlay::inlay_hints;
 use crate::lsp::handlers::rewrite_commands;
-use crate::lsp::handlers::{completion, navigation, semantic, signature};
+use crate::lsp::handlers::{completion, navigation, outline, semantic, signature};
 use crate::lsp::locks::lock;
 use crate::lsp::log::HandlerTimer;
 use crate::lsp::settings::Settings;
-use crate::lsp::state::{not_open, ClientInfo, Shared};
+use crate::lsp::state::{not_open, ClientInfo, DocumentRequest, Shared};
 use crate::lsp::text_document::ChangeError;
 use crate::lsp::transport::outbox::OutgoingSender;
 use crate::lsp::uris::{file_path, program_kind};
 use crate::lsp::workspace::index::Workspace;
+use crate::lsp::workspace::library::workspace_library;
 use crate::lsp::workspace::updates;
 use serde_json::Value;
 use std::path::PathBuf;
@@ -66,15 +68,11 @@ impl Backend {
 }
 
 impl Backend {
-    /// `sinumerik/documentText`.
     /// `sinumerik/modalState`.
     pub async fn modal_state(&self, params: ModalStateParams) -> Result<ModalStateResult> {
         let _timer = HandlerTimer::new("sinumerik/modalState", &self.outgoing);
         let line = params.line as usize;
-        let library = crate::lsp::workspace::library::workspace_library(
-            &self.shared,
-            file_path(&params.uri).as_deref(),
-        );
+        let library = self.library_of(&params.uri);
         let warm = Arc::clone(&library);
         self.on_analysis_after_times(&params.uri, warm, move |analysed| {
             crate::lsp::handlers::modal_state::modal_state_at(analysed, library.as_ref(), line)
@@ -82,6 +80,7 @@ impl Backend {
         .await
     }
 
+    /// `sinumerik/documentText`.
     pub async fn document_text(&self, params: DocumentTextParams) -> Result<DocumentTextResult> {
         let document = self
             .documents
@@ -89,6 +88,36 @@ impl Backend {
             .ok_or_else(|| not_open(&params.uri))?;
         let (version, text) = document.text_now();
         Ok(DocumentTextResult { version, text })
+    }
+
+    /// What the features need of a request about the document at `uri`.
+    fn request(&self, uri: Uri) -> DocumentRequest {
+        DocumentRequest {
+            shared: Arc::clone(&self.shared),
+            uri,
+            encoding: self.encoding(),
+        }
+    }
+
+    /// The library through which the run of the document at `uri` finds the programs it calls.
+    fn library_of(&self, uri: &Uri) -> Arc<dyn ProgramLibrary> {
+        workspace_library(&self.shared, file_path(uri).as_deref())
+    }
+
+    /// A request about the document at `uri`, timed as `method`: `job` answers it on the document's
+    /// up-to-date analysis in the blocking pool, or it fails with "content modified" when an edit
+    /// came meanwhile.
+    async fn answer<T: Send + 'static>(
+        &self,
+        method: &'static str,
+        uri: Uri,
+        job: impl FnOnce(&DocumentRequest, &Analysed) -> T + Send + 'static,
+    ) -> Result<T> {
+        let _timer = HandlerTimer::new(method, &self.outgoing);
+        let request = self.request(uri);
+        let uri = request.uri.clone();
+        self.on_analysis(&uri, move |analysed| job(&request, analysed))
+            .await
     }
 }
 
@@ -243,30 +272,20 @@ impl LanguageServer for Backend {
 
     async fn hover(&self, params: HoverParams) -> Result<Option<Hover>> {
         let _timer = HandlerTimer::new("textDocument/hover", &self.outgoing);
-        let position = params.text_document_position_params.position;
-        let encoding = self.encoding();
-        let uri = params.text_document_position_params.text_document.uri;
-        let shared = Arc::clone(&self.shared);
-        let document_uri = uri.clone();
-        let library =
-            crate::lsp::workspace::library::workspace_library(&shared, file_path(&uri).as_deref());
+        let at = params.text_document_position_params;
+        let request = self.request(at.text_document.uri);
+        let library = self.library_of(&request.uri);
         let warm = Arc::clone(&library);
-        let line = position.line as usize;
+        let line = at.position.line as usize;
+        let uri = request.uri.clone();
         self.on_analysis_after_run(&uri, warm, line, move |analysed| {
             hover(
                 analysed,
                 library.as_ref(),
-                position,
-                encoding,
+                at.position,
+                request.encoding,
                 |line_text, line, byte| {
-                    navigation::documentation(
-                        &shared,
-                        analysed,
-                        &document_uri,
-                        line_text,
-                        line,
-                        byte,
-                    )
+                    navigation::documentation(&request, analysed, line_text, line, byte)
                 },
             )
         })
@@ -277,34 +296,25 @@ impl LanguageServer for Backend {
         &self,
         params: GotoDefinitionParams,
     ) -> Result<Option<GotoDefinitionResponse>> {
-        let _timer = HandlerTimer::new("textDocument/definition", &self.outgoing);
-        let position = params.text_document_position_params.position;
-        let uri = params.text_document_position_params.text_document.uri;
-        let (shared, encoding, document_uri) =
-            (Arc::clone(&self.shared), self.encoding(), uri.clone());
-        self.on_analysis(&uri, move |analysed| {
-            let found =
-                navigation::definition(&shared, analysed, &document_uri, position, encoding);
+        let at = params.text_document_position_params;
+        let uri = at.text_document.uri;
+        self.answer("textDocument/definition", uri, move |request, analysed| {
+            let found = navigation::definition(request, analysed, at.position);
             (!found.is_empty()).then_some(GotoDefinitionResponse::Array(found))
         })
         .await
     }
 
     async fn references(&self, params: ReferenceParams) -> Result<Option<Vec<Location>>> {
-        let _timer = HandlerTimer::new("textDocument/references", &self.outgoing);
-        let position = params.text_document_position.position;
-        let uri = params.text_document_position.text_document.uri;
+        let at = params.text_document_position;
         let include_declaration = params.context.include_declaration;
-        let (shared, encoding, document_uri) =
-            (Arc::clone(&self.shared), self.encoding(), uri.clone());
-        self.on_analysis(&uri, move |analysed| {
+        let uri = at.text_document.uri;
+        self.answer("textDocument/references", uri, move |request, analysed| {
             Some(navigation::references(
-                &shared,
+                request,
                 analysed,
-                &document_uri,
-                position,
+                at.position,
                 include_declaration,
-                encoding,
             ))
         })
         .await
@@ -314,20 +324,13 @@ impl LanguageServer for Backend {
         &self,
         params: DocumentHighlightParams,
     ) -> Result<Option<Vec<DocumentHighlight>>> {
-        let _timer = HandlerTimer::new("textDocument/documentHighlight", &self.outgoing);
-        let position = params.text_document_position_params.position;
-        let uri = params.text_document_position_params.text_document.uri;
-        let (shared, encoding, document_uri) =
-            (Arc::clone(&self.shared), self.encoding(), uri.clone());
-        self.on_analysis(&uri, move |analysed| {
-            Some(navigation::highlights(
-                &shared,
-                analysed,
-                &document_uri,
-                position,
-                encoding,
-            ))
-        })
+        let at = params.text_document_position_params;
+        let uri = at.text_document.uri;
+        self.answer(
+            "textDocument/documentHighlight",
+            uri,
+            move |request, analysed| Some(navigation::highlights(request, analysed, at.position)),
+        )
         .await
     }
 
@@ -335,34 +338,23 @@ impl LanguageServer for Backend {
         &self,
         params: TextDocumentPositionParams,
     ) -> Result<Option<PrepareRenameResponse>> {
-        let _timer = HandlerTimer::new("textDocument/prepareRename", &self.outgoing);
-        let position = params.position;
         let uri = params.text_document.uri;
-        let (shared, encoding, document_uri) =
-            (Arc::clone(&self.shared), self.encoding(), uri.clone());
-        self.on_analysis(&uri, move |analysed| {
-            navigation::prepare_rename(&shared, analysed, &document_uri, position, encoding)
-        })
+        self.answer(
+            "textDocument/prepareRename",
+            uri,
+            move |request, analysed| navigation::prepare_rename(request, analysed, params.position),
+        )
         .await
     }
 
     async fn rename(&self, params: RenameParams) -> Result<Option<WorkspaceEdit>> {
-        let _timer = HandlerTimer::new("textDocument/rename", &self.outgoing);
-        let position = params.text_document_position.position;
-        let uri = params.text_document_position.text_document.uri;
+        let at = params.text_document_position;
         let new_name = params.new_name;
-        let (shared, encoding, document_uri) =
-            (Arc::clone(&self.shared), self.encoding(), uri.clone());
-        self.on_analysis(&uri, move |analysed| {
-            navigation::rename(
-                &shared,
-                analysed,
-                &document_uri,
-                position,
-                &new_name,
-                encoding,
-            )
-        })
+        self.answer(
+            "textDocument/rename",
+            at.text_document.uri,
+            move |request, analysed| navigation::rename(request, analysed, at.position, &new_name),
+        )
         .await?
         .map(Some)
     }
@@ -382,34 +374,24 @@ impl LanguageServer for Backend {
     }
 
     async fn completion(&self, params: CompletionParams) -> Result<Option<CompletionResponse>> {
-        let _timer = HandlerTimer::new("textDocument/completion", &self.outgoing);
-        let position = params.text_document_position.position;
-        let uri = params.text_document_position.text_document.uri;
+        let at = params.text_document_position;
         let snippets = lock(&self.info).snippets;
-        let (shared, encoding, document_uri) =
-            (Arc::clone(&self.shared), self.encoding(), uri.clone());
-        self.on_analysis(&uri, move |analysed| {
-            Some(CompletionResponse::Array(completion::completion_items(
-                &shared,
-                analysed,
-                &document_uri,
-                position,
-                snippets,
-                encoding,
-            )))
+        let uri = at.text_document.uri;
+        self.answer("textDocument/completion", uri, move |request, analysed| {
+            let items = completion::completion_items(request, analysed, at.position, snippets);
+            Some(CompletionResponse::Array(items))
         })
         .await
     }
 
     async fn signature_help(&self, params: SignatureHelpParams) -> Result<Option<SignatureHelp>> {
-        let _timer = HandlerTimer::new("textDocument/signatureHelp", &self.outgoing);
-        let position = params.text_document_position_params.position;
-        let uri = params.text_document_position_params.text_document.uri;
-        let (shared, encoding, document_uri) =
-            (Arc::clone(&self.shared), self.encoding(), uri.clone());
-        self.on_analysis(&uri, move |analysed| {
-            signature::signature(&shared, analysed, &document_uri, position, encoding)
-        })
+        let at = params.text_document_position_params;
+        let uri = at.text_document.uri;
+        self.answer(
+            "textDocument/signatureHelp",
+            uri,
+            move |request, analysed| signature::signature(request, analysed, at.position),
+        )
         .await
     }
 
@@ -417,19 +399,15 @@ impl LanguageServer for Backend {
         &self,
         params: SemanticTokensParams,
     ) -> Result<Option<SemanticTokensResult>> {
-        let _timer = HandlerTimer::new("textDocument/semanticTokens/full", &self.outgoing);
         let uri = params.text_document.uri;
-        let (shared, encoding, document_uri) =
-            (Arc::clone(&self.shared), self.encoding(), uri.clone());
-        self.on_analysis(&uri, move |analysed| {
-            Some(SemanticTokensResult::Tokens(semantic::tokens(
-                &shared,
-                analysed,
-                &document_uri,
-                None,
-                encoding,
-            )))
-        })
+        self.answer(
+            "textDocument/semanticTokens/full",
+            uri,
+            |request, analysed| {
+                let tokens = semantic::tokens(request, analysed, None);
+                Some(SemanticTokensResult::Tokens(tokens))
+            },
+        )
         .await
     }
 
@@ -437,20 +415,15 @@ impl LanguageServer for Backend {
         &self,
         params: SemanticTokensRangeParams,
     ) -> Result<Option<SemanticTokensRangeResult>> {
-        let _timer = HandlerTimer::new("textDocument/semanticTokens/range", &self.outgoing);
         let uri = params.text_document.uri;
-        let range = params.range;
-        let (shared, encoding, document_uri) =
-            (Arc::clone(&self.shared), self.encoding(), uri.clone());
-        self.on_analysis(&uri, move |analysed| {
-            Some(SemanticTokensRangeResult::Tokens(semantic::tokens(
-                &shared,
-                analysed,
-                &document_uri,
-                Some(range),
-                encoding,
-            )))
-        })
+        self.answer(
+            "textDocument/semanticTokens/range",
+            uri,
+            move |request, analysed| {
+                let tokens = semantic::tokens(request, analysed, Some(params.range));
+                Some(SemanticTokensRangeResult::Tokens(tokens))
+            },
+        )
         .await
     }
 
@@ -458,29 +431,30 @@ impl LanguageServer for Backend {
         &self,
         params: DocumentSymbolParams,
     ) -> Result<Option<DocumentSymbolResponse>> {
-        let _timer = HandlerTimer::new("textDocument/documentSymbol", &self.outgoing);
-        let encoding = self.encoding();
-        self.on_analysis(&params.text_document.uri, move |analysed| {
-            Some(DocumentSymbolResponse::Nested(
-                crate::lsp::handlers::outline::document_symbols(analysed, encoding),
-            ))
+        let uri = params.text_document.uri;
+        self.answer("textDocument/documentSymbol", uri, |request, analysed| {
+            let symbols = outline::document_symbols(analysed, request.encoding);
+            Some(DocumentSymbolResponse::Nested(symbols))
         })
         .await
     }
 
     async fn folding_range(&self, params: FoldingRangeParams) -> Result<Option<Vec<FoldingRange>>> {
-        let _timer = HandlerTimer::new("textDocument/foldingRange", &self.outgoing);
-        self.on_analysis(&params.text_document.uri, |analysed| {
-            Some(crate::lsp::handlers::outline::folding_ranges(analysed))
+        let uri = params.text_document.uri;
+        self.answer("textDocument/foldingRange", uri, |_, analysed| {
+            Some(outline::folding_ranges(analysed))
         })
         .await
     }
 
     async fn formatting(&self, params: DocumentFormattingParams) -> Result<Option<Vec<TextEdit>>> {
-        let _timer = HandlerTimer::new("textDocument/formatting", &self.outgoing);
-        let encoding = self.encoding();
-        self.on_analysis(&params.text_document.uri, move |analysed| {
-            Some(rewrite_commands::formatting_edits(analysed, None, encoding))
+        let uri = params.text_document.uri;
+        self.answer("textDocument/formatting", uri, |request, analysed| {
+            Some(rewrite_commands::formatting_edits(
+                analysed,
+                None,
+                request.encoding,
+            ))
         })
         .await
     }
@@ -489,54 +463,50 @@ impl LanguageServer for Backend {
         &self,
         params: DocumentRangeFormattingParams,
     ) -> Result<Option<Vec<TextEdit>>> {
-        let _timer = HandlerTimer::new("textDocument/rangeFormatting", &self.outgoing);
-        let encoding = self.encoding();
-        let range = params.range;
-        self.on_analysis(&params.text_document.uri, move |analysed| {
-            Some(rewrite_commands::formatting_edits(
-                analysed,
-                Some(range),
-                encoding,
-            ))
-        })
+        let (uri, range) = (params.text_document.uri, params.range);
+        self.answer(
+            "textDocument/rangeFormatting",
+            uri,
+            move |request, analysed| {
+                Some(rewrite_commands::formatting_edits(
+                    analysed,
+                    Some(range),
+                    request.encoding,
+                ))
+            },
+        )
         .await
     }
 
     async fn inlay_hint(&self, params: InlayHintParams) -> Result<Option<Vec<InlayHint>>> {
-        let _timer = HandlerTimer::new("textDocument/inlayHint", &self.outgoing);
         let mode = lock(&self.settings).inlay_hints;
-        let encoding = self.encoding();
-        let range = params.range;
-        let library = crate::lsp::workspace::library::workspace_library(
-            &self.shared,
-            file_path(&params.text_document.uri).as_deref(),
-        );
-        self.on_analysis(&params.text_document.uri, move |analysed| {
+        let library = self.library_of(&params.text_document.uri);
+        let (uri, range) = (params.text_document.uri, params.range);
+        self.answer("textDocument/inlayHint", uri, move |request, analysed| {
             Some(inlay_hints(
                 analysed,
                 library.as_ref(),
                 range,
                 mode,
-                encoding,
+                request.encoding,
             ))
         })
         .await
     }
 
     async fn code_action(&self, params: CodeActionParams) -> Result<Option<CodeActionResponse>> {
-        let _timer = HandlerTimer::new("textDocument/codeAction", &self.outgoing);
-        let encoding = self.encoding();
-        let uri = params.text_document.uri.clone();
         let range = params.range;
         let settings = lock(&self.settings).clone();
         let root = lock(&self.info).workspace_root.clone();
-        let document_path = file_path(&uri);
-        self.on_analysis(&params.text_document.uri, move |analysed| {
-            let mut actions = code_actions(analysed, &uri, range, encoding);
+        let uri = params.text_document.uri;
+        self.answer("textDocument/codeAction", uri, move |request, analysed| {
+            let (uri, encoding) = (&request.uri, request.encoding);
+            let path = file_path(uri);
+            let mut actions = code_actions(analysed, uri, range, encoding);
             actions.extend(config_fixes::actions_for(
                 analysed,
                 range,
-                document_path.as_deref(),
+                path.as_deref(),
                 &settings,
                 root.as_deref(),
                 encoding,

@@ -47,6 +47,14 @@ pub struct Shared {
     pub(crate) outgoing: OutgoingSender,
 }
 
+/// The document a request is about, with what every feature needs beside its analysis: the server's
+/// state and the negotiated position encoding.
+pub(crate) struct DocumentRequest {
+    pub(crate) shared: Arc<Shared>,
+    pub(crate) uri: Uri,
+    pub(crate) encoding: PositionEncoding,
+}
+
 pub(crate) fn content_modified() -> Error {
     Error {
         code: ErrorCode::ServerError(-32801),

@@ -2,9 +2,10 @@
 //! analysis, read from the `didOpen`'s string and published first, and the rope built after.
 
 use super::{lock, Analysed, OpenDocument, Pending, PublishedText, TextState, WorkerContext};
+use crate::analysis::document::FlatLines;
 use crate::analysis::document::{DocumentAnalysis, LineSource};
 use crate::lsp::cross_file::extra_findings;
-use crate::lsp::opened_text::{rope_from_string, FlatLines};
+use crate::lsp::opened_text::rope_from_string;
 use crate::lsp::text_document::DocumentText;
 use ropey::Rope;
 use std::sync::{Arc, Mutex};

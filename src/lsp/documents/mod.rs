@@ -7,7 +7,9 @@
 //! and once per `didOpen` while the rope is built from the opened string (15-30 ms for 33 MB): an
 //! edit that comes then waits for it.
 
-use crate::analysis::document::{DocumentAnalysis, LineSource};
+use crate::analysis::document::{
+    core_line_count, DocumentAnalysis, FlatLines, LineSource, RopeLines,
+};
 use crate::analysis::library::ProgramLibrary;
 use crate::analysis::ProgramKind;
 use crate::config::MachineConfig;
@@ -16,11 +18,8 @@ use crate::ide::program_run::ProgramRun;
 use crate::lsp::convert::PositionEncoding;
 use crate::lsp::cross_file::{extra_findings, ExtraDiagnostics};
 use crate::lsp::execution_job::{CachedExecution, CachedTimes, ExecutionJob};
-use crate::lsp::opened_text::FlatLines;
 use crate::lsp::publish::Publisher;
-use crate::lsp::text_document::{
-    apply_changes, core_line_count, ChangeError, DocumentText, RopeLineChange, RopeLines,
-};
+use crate::lsp::text_document::{apply_changes, ChangeError, DocumentText, RopeLineChange};
 use crate::lsp::transport::outbox::{Outgoing, OutgoingSender};
 use ropey::Rope;
 use std::collections::HashMap;

@@ -5,13 +5,12 @@
 //! than a label list that lags by 300 ms.
 
 use crate::ide::completion::{completion, CompletionKind};
-use crate::lsp::convert::PositionEncoding;
 use crate::lsp::documents::Analysed;
 use crate::lsp::handlers::navigation::line_at;
-use crate::lsp::state::Shared;
+use crate::lsp::state::DocumentRequest;
 use tower_lsp_server::ls_types::{
     CompletionItem, CompletionItemKind, CompletionItemLabelDetails, Documentation,
-    InsertTextFormat, MarkupContent, MarkupKind, Position, Uri,
+    InsertTextFormat, MarkupContent, MarkupKind, Position,
 };
 
 /// The characters after which the client asks for completion without a letter typed: `$` starts a
@@ -34,15 +33,14 @@ fn item_kind(kind: CompletionKind) -> CompletionItemKind {
 
 /// `textDocument/completion`; snippets only for clients that take them.
 pub fn completion_items(
-    shared: &Shared,
+    request: &DocumentRequest,
     analysed: &Analysed,
-    uri: &Uri,
     position: Position,
     snippets: bool,
-    encoding: PositionEncoding,
 ) -> Vec<CompletionItem> {
-    let id = shared.workspace.ensure_present(uri, analysed);
-    let Some((line, text, byte)) = line_at(analysed, position, encoding) else {
+    let shared = &request.shared;
+    let id = shared.workspace.ensure_present(&request.uri, analysed);
+    let Some((line, text, byte)) = line_at(analysed, position, request.encoding) else {
         return Vec::new();
     };
     let state = shared.workspace.read();

@@ -12,7 +12,7 @@ use crate::lsp::documents::Analysed;
 use crate::lsp::handlers::workspace_edit::{
     workspace_edit, workspace_edit_with_renames, DocumentEdits,
 };
-use crate::lsp::state::Shared;
+use crate::lsp::state::{DocumentRequest, Shared};
 use crate::lsp::uris::file_path;
 use crate::lsp::workspace::index::IndexState;
 use crate::lsp::workspace::updates::update_all_open;
@@ -167,12 +167,11 @@ fn locations(texts: &mut LineTexts<'_>, found: &[IdeLocation]) -> Vec<Location> 
 
 /// `textDocument/definition`.
 pub fn definition(
-    shared: &Shared,
+    request: &DocumentRequest,
     analysed: &Analysed,
-    uri: &Uri,
     position: Position,
-    encoding: PositionEncoding,
 ) -> Vec<Location> {
+    let (shared, uri, encoding) = (&*request.shared, &request.uri, request.encoding);
     let id = shared.workspace.ensure_current(uri, analysed);
     let cursor = Cursor::new(id.clone(), analysed, position, encoding);
     let state = shared.workspace.read();
@@ -183,13 +182,12 @@ pub fn definition(
 
 /// `textDocument/references`: every open document is brought up to date first.
 pub fn references(
-    shared: &Shared,
+    request: &DocumentRequest,
     analysed: &Analysed,
-    uri: &Uri,
     position: Position,
     include_declaration: bool,
-    encoding: PositionEncoding,
 ) -> Vec<Location> {
+    let (shared, uri, encoding) = (&*request.shared, &request.uri, request.encoding);
     update_all_open(shared);
     let id = shared.workspace.ensure_current(uri, analysed);
     let cursor = Cursor::new(id.clone(), analysed, position, encoding);
@@ -208,12 +206,11 @@ pub fn references(
 /// `textDocument/documentHighlight`: a label and its jumps, a variable and its reads and writes
 /// (nothing while a large document's entry is older than its text, see `current_if_cheap`).
 pub fn highlights(
-    shared: &Shared,
+    request: &DocumentRequest,
     analysed: &Analysed,
-    uri: &Uri,
     position: Position,
-    encoding: PositionEncoding,
 ) -> Vec<DocumentHighlight> {
+    let (shared, uri, encoding) = (&*request.shared, &request.uri, request.encoding);
     let Some(id) = shared.workspace.current_if_cheap(uri, analysed) else {
         return Vec::new();
     };
@@ -236,12 +233,11 @@ pub fn highlights(
 
 /// `textDocument/prepareRename`: the renamable name at the cursor, `None` where there is none.
 pub fn prepare_rename(
-    shared: &Shared,
+    request: &DocumentRequest,
     analysed: &Analysed,
-    uri: &Uri,
     position: Position,
-    encoding: PositionEncoding,
 ) -> Option<PrepareRenameResponse> {
+    let (shared, uri, encoding) = (&*request.shared, &request.uri, request.encoding);
     let id = shared.workspace.ensure_current(uri, analysed);
     let cursor = Cursor::new(id.clone(), analysed, position, encoding);
     let state = shared.workspace.read();
@@ -271,13 +267,12 @@ fn rename_error(error: RenameError) -> Error {
 /// `textDocument/rename` across the workspace; every open document is brought up to date first
 /// and edited at its current version.
 pub fn rename(
-    shared: &Shared,
+    request: &DocumentRequest,
     analysed: &Analysed,
-    uri: &Uri,
     position: Position,
     new_name: &str,
-    encoding: PositionEncoding,
 ) -> Result<WorkspaceEdit, Error> {
+    let (shared, uri, encoding) = (&*request.shared, &request.uri, request.encoding);
     update_all_open(shared);
     let id = shared.workspace.ensure_current(uri, analysed);
     let cursor = Cursor::new(id.clone(), analysed, position, encoding);
@@ -399,17 +394,16 @@ pub fn workspace_symbols(
 /// analysed document. While the entry of a large document is older than its text, only the
 /// language's own words are documented (the document's symbols could be on other lines now).
 pub fn documentation(
-    shared: &Shared,
+    request: &DocumentRequest,
     analysed: &Analysed,
-    uri: &Uri,
     line_text: &str,
     line: usize,
     byte: usize,
 ) -> Option<crate::ide::documentation::Documentation> {
-    let id = shared
-        .workspace
-        .current_if_cheap(uri, analysed)
+    let workspace = &request.shared.workspace;
+    let id = workspace
+        .current_if_cheap(&request.uri, analysed)
         .unwrap_or_else(|| DocumentId::from(""));
-    let state = shared.workspace.read();
+    let state = workspace.read();
     crate::ide::documentation::documentation_at(&state.index, &id, line_text, line, byte)
 }

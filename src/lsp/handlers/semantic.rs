@@ -10,13 +10,13 @@ use crate::ide::semantic_tokens::{
     semantic_tokens, TokenKind, DECLARATION, MODIFICATION, NON_MODAL,
 };
 use crate::ide::symbols::SymbolTable;
-use crate::lsp::convert::{byte_to_character, PositionEncoding};
+use crate::lsp::convert::byte_to_character;
 use crate::lsp::documents::Analysed;
-use crate::lsp::state::Shared;
+use crate::lsp::state::DocumentRequest;
 use std::sync::Arc;
 use tower_lsp_server::ls_types::{
     Range, SemanticToken, SemanticTokenModifier, SemanticTokenType, SemanticTokens,
-    SemanticTokensLegend, Uri,
+    SemanticTokensLegend,
 };
 
 /// The token types, in the order of their indices in the legend.
@@ -115,13 +115,12 @@ fn encode_kind(kind: TokenKind) -> (u32, u32) {
 
 /// `textDocument/semanticTokens/full` (`range` `None`) and `.../range`.
 pub fn tokens(
-    shared: &Shared,
+    request: &DocumentRequest,
     analysed: &Analysed,
-    uri: &Uri,
     range: Option<Range>,
-    encoding: PositionEncoding,
 ) -> SemanticTokens {
-    let id = shared.workspace.ensure_present(uri, analysed);
+    let (shared, encoding) = (&request.shared, request.encoding);
+    let id = shared.workspace.ensure_present(&request.uri, analysed);
     let table: Arc<SymbolTable> = match shared.workspace.read().index.document(&id) {
         Some(indexed) => Arc::clone(&indexed.symbols),
         None => Arc::new(SymbolTable::build(

@@ -2,13 +2,13 @@
 //! (standard cycles from the reference §8.7, `PROC` headers of the workspace, `EXTERN` declarations).
 
 use crate::ide::signature_help::signature_help;
-use crate::lsp::convert::{byte_to_character, PositionEncoding};
+use crate::lsp::convert::byte_to_character;
 use crate::lsp::documents::Analysed;
 use crate::lsp::handlers::navigation::line_at;
-use crate::lsp::state::Shared;
+use crate::lsp::state::DocumentRequest;
 use tower_lsp_server::ls_types::{
     Documentation, ParameterInformation, ParameterLabel, Position, SignatureHelp,
-    SignatureInformation, Uri,
+    SignatureInformation,
 };
 
 /// The characters that open or advance a call's parameter list.
@@ -16,13 +16,12 @@ pub const TRIGGER_CHARACTERS: [&str; 2] = ["(", ","];
 
 /// `textDocument/signatureHelp`, `None` outside a known call.
 pub fn signature(
-    shared: &Shared,
+    request: &DocumentRequest,
     analysed: &Analysed,
-    uri: &Uri,
     position: Position,
-    encoding: PositionEncoding,
 ) -> Option<SignatureHelp> {
-    let id = shared.workspace.ensure_present(uri, analysed);
+    let (shared, encoding) = (&request.shared, request.encoding);
+    let id = shared.workspace.ensure_present(&request.uri, analysed);
     let (_, text, byte) = line_at(analysed, position, encoding)?;
     let state = shared.workspace.read();
     let help = signature_help(&state.index, &id, &text, byte)?;

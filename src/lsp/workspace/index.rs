@@ -7,13 +7,13 @@
 //! waits for a document's `analysis` lock while holding the index's, and nothing takes the index's
 //! lock twice in one thread (a waiting writer would block the second reader).
 
+use crate::analysis::document::RopeLines;
 use crate::config::MachineConfig;
 use crate::ide::symbols::SymbolTable;
 use crate::ide::{DocumentId, WorkspaceIndex};
 use crate::io::source_file::read_source_file;
 use crate::lsp::documents::{Analysed, OpenDocument};
 use crate::lsp::locks::lock;
-use crate::lsp::text_document::RopeLines;
 use crate::lsp::uris::file_path;
 use crate::lsp::workspace::library_texts::LibraryTexts;
 use std::collections::{HashMap, HashSet};

@@ -14,8 +14,9 @@
 //! after releasing it; it must not be called while the caller holds the index's lock.
 
 use crate::analysis::library::{LibraryProgram, ProgramLibrary};
-use crate::ide::workspace::{call_rank, macro_file_rank, FileKind, IndexedDocument};
-use crate::ide::{DocumentId, WorkspaceIndex};
+use crate::ide::call_lookup::{folders_above, LookupOrder};
+use crate::ide::workspace::IndexedDocument;
+use crate::ide::DocumentId;
 use crate::io::source_file::read_source_file;
 use crate::lsp::locks::lock;
 use crate::lsp::state::Shared;
@@ -229,85 +230,6 @@ impl WorkspaceLibrary {
         self.shared
             .upgrade()
             .map_or(0, |shared| shared.workspace.library_texts.generation())
-    }
-}
-
-/// The folder of the file at `path` and the folders above it, nearest first.
-fn folders_above(path: Option<&Path>) -> Vec<PathBuf> {
-    path.and_then(Path::parent)
-        .map(|folder| folder.ancestors().map(Path::to_path_buf).collect())
-        .unwrap_or_default()
-}
-
-/// The order in which a document looks for the programs it calls.
-struct LookupOrder<'a> {
-    /// The document's folder and the folders above it, nearest first.
-    folders: &'a [PathBuf],
-    /// The cycle folders, in the order of the setting.
-    cycles: &'a [PathBuf],
-}
-
-impl LookupOrder<'_> {
-    /// Where a document comes: its folder's place among the caller's folders, then among the cycle
-    /// folders (which hold their subfolders' files too), then everything else (documents that are no
-    /// file among them).
-    fn folder_rank(&self, id: &str) -> usize {
-        let path = Path::new(id);
-        if !path.is_absolute() {
-            return usize::MAX;
-        }
-        if let Some(place) = path
-            .parent()
-            .and_then(|folder| self.folders.iter().position(|known| known == folder))
-        {
-            return place;
-        }
-        self.cycles
-            .iter()
-            .position(|cycles| path.starts_with(cycles))
-            .map_or(usize::MAX, |place| self.folders.len() + place)
-    }
-
-    /// The document a call of `name` (upper case) runs; `is_open` says whether a document is open
-    /// in the editor, which wins over a file elsewhere that would rank the same.
-    fn best_program<'i>(
-        &self,
-        index: &'i WorkspaceIndex,
-        name: &str,
-        is_open: impl Fn(&str) -> bool,
-    ) -> Option<&'i IndexedDocument> {
-        index
-            .documents()
-            .filter(|document| {
-                document.program_name == name
-                    && matches!(document.kind, FileKind::Subprogram | FileKind::MainProgram)
-            })
-            .filter_map(|document| {
-                let rank = call_rank(&document.id)?;
-                let key = (self.folder_rank(&document.id), rank, !is_open(&document.id));
-                Some((key, document))
-            })
-            // The index iterates by id: among equals the first id wins, on every run alike.
-            .min_by(|(left, _), (right, _)| left.cmp(right))
-            .map(|(_, document)| document)
-    }
-
-    /// The definition files that define macros, in reading order.
-    fn macro_files<'i>(&self, index: &'i WorkspaceIndex) -> Vec<&'i IndexedDocument> {
-        let mut files: Vec<&IndexedDocument> = index
-            .documents()
-            .filter(|document| {
-                document.kind == FileKind::Definitions && !document.symbols.macros.is_empty()
-            })
-            .collect();
-        // Stable: equal ranks keep the index's order by id.
-        files.sort_by_key(|document| {
-            (
-                self.folder_rank(&document.id),
-                macro_file_rank(&document.program_name),
-            )
-        });
-        files
     }
 }
 
