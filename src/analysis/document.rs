@@ -29,6 +29,8 @@ mod pass;
 pub(crate) mod report;
 mod rope_lines;
 #[cfg(test)]
+pub(crate) mod test_texts;
+#[cfg(test)]
 mod tests;
 
 pub use crate::analysis::resolution::{ResolutionMode, WordResolution};

@@ -36,27 +36,7 @@ fn piece_start(text: &str) -> usize {
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    const TEXTS: &[&str] = &[
-        "",
-        "\n",
-        "G0 X1",
-        "G0 X1\n",
-        "a\r\nb\rc\n\nd",
-        "\r\r\n\n\r",
-        "ä\nö\r\nü",
-    ];
-
-    fn long_text(lines: usize) -> String {
-        (0..lines)
-            .map(|index| match index % 5 {
-                0 => format!("N{index} G1 X{index}\r\n"),
-                1 => "\r".to_string(),
-                2 => format!("; ü {index}\n"),
-                _ => format!("X{index}\n"),
-            })
-            .collect()
-    }
+    use crate::analysis::document::test_texts::{long_text, TEXTS};
 
     #[test]
     fn the_rope_built_from_the_end_is_the_rope_of_the_text() {

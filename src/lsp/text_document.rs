@@ -163,6 +163,7 @@ fn replace(rope: &mut Rope, start: usize, end: usize, text: &str) -> RopeLineCha
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::analysis::document::{LineSource, RopeLines};
     use tower_lsp_server::ls_types::{Position, Range};
 
     fn change(start: (u32, u32), end: (u32, u32), text: &str) -> TextDocumentContentChangeEvent {
@@ -237,7 +238,9 @@ mod tests {
         .unwrap();
         assert_eq!(document.rope.to_string(), "a\r\nb");
         // "a\r" and the new "\n" joined into one CRLF: still two lines, and line 0 is untouched.
-        assert_eq!(core_line_count(&document.rope), 2);
+        let lines = RopeLines::new(&document.rope);
+        assert_eq!(lines.line_count(), 2);
+        assert_eq!((lines.line(0), lines.line(1)), ("a".into(), "b".into()));
         assert_eq!(
             changed.to_core(2, 2),
             LineChange {

@@ -122,27 +122,8 @@ impl LineSource for FlatLines<'_> {
 mod tests {
     use super::*;
     use crate::analysis::document::line_source::TextLines;
-
-    const TEXTS: &[&str] = &[
-        "",
-        "\n",
-        "G0 X1",
-        "G0 X1\n",
-        "a\r\nb\rc\n\nd",
-        "\r\r\n\n\r",
-        "ä\nö\r\nü",
-    ];
-
-    fn long_text(lines: usize) -> String {
-        (0..lines)
-            .map(|index| match index % 5 {
-                0 => format!("N{index} G1 X{index}\r\n"),
-                1 => "\r".to_string(),
-                2 => format!("; ü {index}\n"),
-                _ => format!("X{index}\n"),
-            })
-            .collect()
-    }
+    use crate::analysis::document::rope_lines::RopeLines;
+    use crate::analysis::document::test_texts::{long_text, TEXTS};
 
     fn same_lines(text: &str) {
         let flat = FlatLines::new(text);
@@ -171,6 +152,9 @@ mod tests {
                 (start < expected.line_count()).then(|| (start, expected.line(start).into_owned()));
             assert_eq!(first, wanted, "from {start}");
         }
+        // The same lines as the rope's, which the analysis reads after the first one.
+        let rope = ropey::Rope::from_str(text);
+        assert_eq!(flat.line_count(), RopeLines::new(&rope).line_count());
     }
 
     #[test]
